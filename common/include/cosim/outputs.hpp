@@ -1,0 +1,64 @@
+#pragma once
+// Run outputs: summary.json, CSV time series, VTK files for ParaView.
+// Everything is flushed as it is written, so a run that fails keeps what it
+// produced up to its last completed step.
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace cosim {
+
+// Creates the folder (and parents); throws cosim::Error if it cannot.
+void make_folder(const std::string& path);
+
+// Writes JSON to path via a temporary file and rename (never half-written).
+void write_json(const std::string& path, const nlohmann::json& value);
+
+// A CSV time series with a fixed header. Rows are flushed at least every
+// second of wall time and when the writer is destroyed.
+class CsvWriter {
+ public:
+  CsvWriter(const std::string& path, const std::vector<std::string>& columns);
+  ~CsvWriter();
+  void row(const std::vector<double>& values);
+  void flush();
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::size_t columns_;
+  std::ofstream out_;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+// Point cloud output (legacy binary VTK POLYDATA, one file per frame) plus a
+// "<name>.vtk.series" index that ParaView opens as a time series.
+class VtkSeries {
+ public:
+  VtkSeries(std::string folder, std::string name);
+  struct ScalarField {
+    std::string name;
+    const double* values;
+  };
+  struct VectorField {
+    std::string name;
+    const double* x;
+    const double* y;
+    const double* z;
+  };
+  // Writes one frame; returns the file name.
+  std::string write(double time_s, std::size_t count, const double* x, const double* y,
+                    const double* z, const std::vector<ScalarField>& scalars,
+                    const std::vector<VectorField>& vectors);
+  std::size_t frames() const { return entries_.size(); }
+
+ private:
+  void write_index() const;
+  std::string folder_, name_;
+  std::vector<std::pair<std::string, double>> entries_;
+};
+
+}  // namespace cosim

@@ -1,0 +1,28 @@
+#pragma once
+// A progress line for long runs: simulated time, steps/s, ETA. Rewrites one
+// line on a terminal; prints a line every few seconds otherwise (logs, CI).
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace cosim {
+
+class Progress {
+ public:
+  Progress(std::string label, double end_time_s, bool quiet = false);
+  // Call every step; prints at most every `interval` of wall time.
+  void update(double sim_time_s, std::uint64_t steps);
+  void finish(double sim_time_s, std::uint64_t steps);
+  double elapsed_s() const;
+
+ private:
+  void print(double sim_time_s, std::uint64_t steps, bool final_line);
+  std::string label_;
+  double end_time_s_;
+  bool quiet_, tty_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+std::string format_duration(double seconds);
+
+}  // namespace cosim

@@ -1,0 +1,1 @@
+#include "cosim/error.hpp"

@@ -1,0 +1,31 @@
+#pragma once
+// Participants of a scene and the study runner.
+#include <string>
+#include <vector>
+
+#include "cosim/scene_io.hpp"
+
+namespace cosim {
+
+// The programs a scene needs, in start order (today: snow_sph for a terrain
+// scene; a tyre on a rigid road will need tyre_fe alone).
+std::vector<std::string> participants(const scene::Scene& scene);
+
+// Validates every part of a scene; throws cosim::Error listing all problems.
+void check_scene(const LoadedScene& scene);
+
+struct RunRequest {
+  std::string scene_file;
+  std::string out_dir;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  bool no_vtk = false;
+};
+// Starts the participants of the scene and waits; returns the exit code.
+int run_scene_processes(const RunRequest& request);
+
+// Runs every case of a study and writes DIR/table.csv, DIR/summary.json and
+// DIR/error_vs_runtime.png (gnuplot).
+int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk);
+
+}  // namespace cosim

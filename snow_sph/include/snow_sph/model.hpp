@@ -1,0 +1,85 @@
+#pragma once
+// The runtime model of an SPH terrain: particles, materials, kernel,
+// boundary planes and rigid bodies, built once from a scene (build.cpp) and
+// then advanced by the stages in solver.hpp.
+#include <string>
+#include <vector>
+
+#include "snow_sph/kernels.hpp"
+#include "snow_sph/mdpc.hpp"
+#include "snow_sph/neighbours.hpp"
+#include "snow_sph/particles.hpp"
+#include "snow_sph/water_eos.hpp"
+
+namespace snow_sph {
+
+struct MaterialModel {
+  enum class Kind { snow, water } kind = Kind::snow;
+  std::string name;
+  double density0 = 0.0;
+  // Snow.
+  MdpcParameters mdpc;
+  // Water.
+  WaterEos eos;
+  double reference_sound_speed = 0.0;  // c0 of the material data
+  double viscosity = 0.0;              // dynamic viscosity [Pa s]
+  bool sound_speed_lowered = false;
+};
+
+// An axis-aligned mirror plane: a rigid free-slip wall or a symmetry plane.
+// The domain lies on the side given by `inside_sign` (+1: coordinate >= position).
+struct MirrorPlane {
+  int axis = 0;
+  double position = 0.0;
+  int inside_sign = 1;
+  bool symmetry = false;
+  std::string face;
+};
+
+// A rigid cylinder moving along z only, in contact with the particles.
+struct RigidBody {
+  std::string name;
+  double radius = 0.0, thickness = 0.0;
+  double mass_domain = 0.0;         // mass carried in the simulated part of a symmetric model
+  double symmetry_factor = 1.0;     // full model / simulated part
+  double x = 0.0, y = 0.0, z = 0.0;  // bottom centre
+  double z0 = 0.0;
+  double vz = 0.0, az = 0.0;
+  double friction = 0.0;
+  bool prescribed_velocity = false;
+  double prescribed_vz = 0.0;
+  double applied_force_z_full = 0.0;  // full-model force
+  double ramp_time = 0.0;
+  double contact_force_z_domain = 0.0;  // last step, simulated part
+  double contact_force_x_domain = 0.0, contact_force_y_domain = 0.0;
+  double applied_force_z_now(double t) const;
+};
+
+struct Settings {
+  double cfl = 0.3;
+  double fixed_dt = 0.0;
+  double end_time = 0.0;
+  unsigned long long max_steps = 0;
+  double av_alpha = 1.0, av_beta = 1.0;
+  double artificial_stress_epsilon = 0.0;
+  double density_diffusion_delta = 0.0;
+  double gravity[3] = {0.0, 0.0, -9.81};
+  double spacing = 0.0;
+  double contact_stiffness = 0.0;  // per particle [N/m]
+  double skin = 0.0;
+};
+
+struct Model {
+  std::string name;
+  Particles particles;
+  std::vector<MaterialModel> materials;
+  Kernel kernel;
+  Settings settings;
+  std::vector<MirrorPlane> planes;
+  std::vector<RigidBody> bodies;
+  double container_min[3] = {0, 0, 0}, container_max[3] = {0, 0, 0};
+  // Symmetry factor of the whole particle model (for reporting full-model values).
+  double symmetry_factor = 1.0;
+};
+
+}  // namespace snow_sph

@@ -1,0 +1,23 @@
+#pragma once
+// Running an SPH scene end to end: model -> step loop -> outputs
+// (summary.json, CSV time series, VTK). See docs/outputs.md for the files.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/scene_io.hpp"
+
+namespace snow_sph {
+
+struct RunOptions {
+  std::string out_dir;
+  bool quiet = false;       // no progress line
+  bool write_vtk = true;    // false: skip VTK even if the scene asks (tests)
+};
+
+// Runs the scene; returns the summary (also written to out_dir/summary.json).
+// On failure the summary is written with "status": "failed" and the error,
+// every output written so far is kept, and cosim::Error is rethrown.
+nlohmann::json run_scene(const cosim::LoadedScene& scene, const RunOptions& options);
+
+}  // namespace snow_sph

@@ -1,0 +1,64 @@
+#pragma once
+// Water: linear Us-Up Hugoniot in Mie-Grueneisen form (Abaqus Analysis User's
+// Guide 25.2.1; thesis Table 4.1):
+//   p = rho0 c0^2 eta / (1 - s eta)^2 * (1 - Gamma0 eta / 2) + Gamma0 rho0 Em,
+//   eta = 1 - rho0 / rho.
+// The internal energy Em is not tracked, so Gamma0 must be 0 (the thesis
+// value); validation refuses anything else.
+#include <cmath>
+
+namespace snow_sph {
+
+struct WaterEos {
+  double rho0 = 996.0;      // kg/m^3
+  double c0 = 1500.0;       // m/s (possibly lowered; see WaterModel)
+  double s = 0.0;           // Hugoniot slope
+
+  double eta(double rho) const { return 1.0 - rho0 / rho; }
+
+  double pressure(double rho) const {
+    const double e = eta(rho);
+    const double d = 1.0 - s * e;
+    return rho0 * c0 * c0 * e / (d * d);
+  }
+
+  // Bulk sound speed sqrt(dp/drho).
+  double sound_speed(double rho) const {
+    const double e = eta(rho);
+    const double d = 1.0 - s * e;
+    const double dp_deta = rho0 * c0 * c0 * (1.0 + s * e) / (d * d * d);
+    const double c2 = dp_deta * rho0 / (rho * rho);
+    return std::sqrt(std::max(c2, 0.0));
+  }
+
+  // Density giving pressure p (inverse of pressure(), s = 0 closed form,
+  // otherwise Newton).
+  double density_for_pressure(double p) const {
+    double e = p / (rho0 * c0 * c0);
+    for (int it = 0; it < 30 && s != 0.0; ++it) {
+      const double d = 1.0 - s * e;
+      const double f = rho0 * c0 * c0 * e / (d * d) - p;
+      const double df = rho0 * c0 * c0 * (1.0 + s * e) / (d * d * d);
+      e -= f / df;
+    }
+    return rho0 / (1.0 - e);
+  }
+
+  // Elastic energy per unit mass, integral of p / rho^2 drho from rho0
+  // (s = 0: c0^2 eta^2 / 2). Used in the energy balance.
+  double energy_per_mass(double rho) const {
+    const double e = eta(rho);
+    if (s == 0.0) return 0.5 * c0 * c0 * e * e;
+    // integral of p deta / rho0 (d eta = rho0/rho^2 drho)
+    const int n = 16;
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double ek = (k + 0.5) * e / n;
+      const double d = 1.0 - s * ek;
+      sum += c0 * c0 * ek / (d * d);
+    }
+    return sum * e / n;
+  }
+};
+
+}  // namespace snow_sph

@@ -1,0 +1,487 @@
+#include "snow_sph/solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "cosim/error.hpp"
+#include "cosim/parallel.hpp"
+#include "snow_sph/boundaries.hpp"
+
+namespace snow_sph {
+
+double EnergyBalance::relative_error() const {
+  const double scale = std::max({std::abs(kinetic), std::abs(internal), std::abs(external_work),
+                                 std::abs(viscous_dissipation), 1e-30});
+  return std::abs(total() - initial_total) / scale;
+}
+
+double RigidBody::applied_force_z_now(double t) const {
+  if (ramp_time <= 0.0 || t >= ramp_time) return applied_force_z_full;
+  // Smooth step (zero slope at both ends), as Abaqus's SMOOTH STEP amplitude.
+  const double s = t / ramp_time;
+  return applied_force_z_full * s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+}
+
+Solver::Solver(Model& model) : m_(model) {}
+
+bool Solver::finite() const {
+  const Particles& p = m_.particles;
+  for (std::size_t i = 0; i < p.n_real; ++i) {
+    if (!std::isfinite(p.x[i] + p.y[i] + p.z[i] + p.vx[i] + p.vy[i] + p.vz[i] + p.density[i] +
+                       p.sxx[i] + p.syy[i] + p.szz[i] + p.sxy[i] + p.syz[i] + p.sxz[i]))
+      return false;
+  }
+  for (const auto& b : m_.bodies)
+    if (!std::isfinite(b.z + b.vz)) return false;
+  return true;
+}
+
+double Solver::stability_limit_dt() const {
+  const Particles& p = m_.particles;
+  const double h = m_.kernel.h;
+  double limit = 1e30;
+  for (std::size_t i = 0; i < p.n_real; ++i) {
+    const double v = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+    limit = std::min(limit, h / (p.sound_speed[i] + v));
+    const double a = std::sqrt(p.ax[i] * p.ax[i] + p.ay[i] * p.ay[i] + p.az[i] * p.az[i]);
+    if (a > 0) limit = std::min(limit, std::sqrt(h / a));
+  }
+  if (!m_.bodies.empty() && m_.settings.contact_stiffness > 0) {
+    double m_min = 1e30;
+    for (std::size_t i = 0; i < p.n_real; ++i) m_min = std::min(m_min, p.mass[i]);
+    // Penalty spring: omega dt < 2 is the central-difference limit.
+    limit = std::min(limit, 2.0 * std::sqrt(m_min / m_.settings.contact_stiffness));
+  }
+  return limit;
+}
+
+double Solver::stable_dt() const {
+  const double limit = stability_limit_dt();
+  if (m_.settings.fixed_dt > 0.0) {
+    if (m_.settings.fixed_dt > limit)
+      throw cosim::Error("time.fixed_dt_s = " + std::to_string(m_.settings.fixed_dt) +
+                         " s exceeds the stable limit " + std::to_string(limit) + " s at t = " +
+                         std::to_string(time_) + " s");
+    return m_.settings.fixed_dt;
+  }
+  return m_.settings.cfl * limit;
+}
+
+void Solver::rebuild_if_needed(bool force) {
+  Particles& p = m_.particles;
+  const double half_skin = 0.5 * m_.settings.skin;
+  bool rebuild = force || ref_x_.size() != p.n_real;
+  if (!rebuild) {
+    const double limit2 = half_skin * half_skin;
+    for (std::size_t i = 0; i < p.n_real && !rebuild; ++i) {
+      const double dx = p.x[i] - ref_x_[i], dy = p.y[i] - ref_y_[i], dz = p.z[i] - ref_z_[i];
+      rebuild = dx * dx + dy * dy + dz * dz > limit2;
+    }
+  }
+  if (!rebuild) {
+    refresh_ghost_kinematics(m_);
+    return;
+  }
+  const double radius = m_.kernel.support + m_.settings.skin;
+  p.resize(p.n_real);
+  p.permute_real(cell_order(p.x.data(), p.y.data(), p.z.data(), p.n_real, radius));
+  make_ghosts(m_, radius);
+  build_neighbour_list(p.x.data(), p.y.data(), p.z.data(), p.n_real, p.size(), radius, list_);
+  ref_x_.assign(p.x.begin(), p.x.begin() + p.n_real);
+  ref_y_.assign(p.y.begin(), p.y.begin() + p.n_real);
+  ref_z_.assign(p.z.begin(), p.z.begin() + p.n_real);
+  ++rebuilds_;
+}
+
+// Velocity gradient L_i = (1/rho_i) sum_j m_j (v_j - v_i) (x) grad_i W_ij and
+// continuity drho_i/dt = -rho_i tr(L_i) (the pair that conserves energy with
+// the momentum equation in compute_forces), plus delta-SPH diffusion for water.
+void Solver::compute_rates() {
+  switch (m_.kernel.type) {
+    case KernelType::cubic: return compute_rates_t<KernelType::cubic>();
+    case KernelType::quadratic: return compute_rates_t<KernelType::quadratic>();
+    case KernelType::quintic: return compute_rates_t<KernelType::quintic>();
+  }
+}
+
+template <KernelType T>
+void Solver::compute_rates_t() {
+  Particles& p = m_.particles;
+  const Kernel k = m_.kernel;
+  const double s2 = k.support * k.support;
+  const double* g = m_.settings.gravity;
+  const double delta = m_.settings.density_diffusion_delta;
+  const auto* off = list_.offsets.data();
+  const auto* nb = list_.index.data();
+  cosim::parallel_for("sph.rates", p.n_real, [&](std::size_t i) {
+    const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
+    const double vxi = p.vx[i], vyi = p.vy[i], vzi = p.vz[i];
+    const MaterialModel& mi = m_.materials[p.material[i]];
+    const bool diffuse = delta > 0 && mi.kind == MaterialModel::Kind::water;
+    const double c_diff = diffuse ? delta * k.h * mi.eos.c0 : 0.0;
+    const double hydro = diffuse ? mi.density0 / (mi.eos.c0 * mi.eos.c0) : 0.0;
+    double l[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double diffusion = 0.0;
+    std::uint32_t count = 0;
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nb[e];
+      const double rx = xi - p.x[j], ry = yi - p.y[j], rz = zi - p.z[j];
+      const double r2 = rx * rx + ry * ry + rz * rz;
+      if (r2 >= s2) continue;
+      ++count;
+      const double f = k.template gradient_over_r_t<T>(std::sqrt(r2));
+      const double gx = rx * f, gy = ry * f, gz = rz * f;
+      const double mj = p.mass[j];
+      const double dvx = p.vx[j] - vxi, dvy = p.vy[j] - vyi, dvz = p.vz[j] - vzi;
+      l[0] += mj * dvx * gx, l[1] += mj * dvx * gy, l[2] += mj * dvx * gz;
+      l[3] += mj * dvy * gx, l[4] += mj * dvy * gy, l[5] += mj * dvy * gz;
+      l[6] += mj * dvz * gx, l[7] += mj * dvz * gy, l[8] += mj * dvz * gz;
+      if (diffuse && m_.materials[p.material[j]].kind == MaterialModel::Kind::water) {
+        // psi_ij . grad W with x_ji = -r: 2 (rho_j - rho_i - drho_hydro) (x_ji . gradW) / r^2
+        const double drho_h = hydro * (-(g[0] * rx + g[1] * ry + g[2] * rz));
+        const double psi = 2.0 * (p.density[j] - p.density[i] - drho_h);
+        diffusion += psi * (-f) * mj / p.density[j];  // (x_ji . grad W) / r^2 = -F
+      }
+    }
+    const double inv_rho = 1.0 / p.density[i];
+    lxx_[i] = l[0] * inv_rho, lxy_[i] = l[1] * inv_rho, lxz_[i] = l[2] * inv_rho;
+    lyx_[i] = l[3] * inv_rho, lyy_[i] = l[4] * inv_rho, lyz_[i] = l[5] * inv_rho;
+    lzx_[i] = l[6] * inv_rho, lzy_[i] = l[7] * inv_rho, lzz_[i] = l[8] * inv_rho;
+    p.density_rate[i] = -(l[0] + l[4] + l[8]) + c_diff * diffusion;
+    p.neighbour_count[i] = count;
+  });
+}
+
+// Density, then stress: Jaumann rotation of sigma^n and the constitutive
+// update with the strain increment D dt (snow: mdpc_update), or the equation
+// of state (water). Records stress power for the energy balance.
+void Solver::update_materials(double dt) {
+  Particles& p = m_.particles;
+  const double eps_as = m_.settings.artificial_stress_epsilon;
+  cosim::parallel_for("sph.material", p.n_real, [&](std::size_t i) {
+    const MaterialModel& mat = m_.materials[p.material[i]];
+    const double rho_old = p.density[i];
+    const double rho = rho_old + dt * p.density_rate[i];
+    p.density[i] = rho;
+    Eigen::Matrix3d L;
+    L << lxx_[i], lxy_[i], lxz_[i], lyx_[i], lyy_[i], lyz_[i], lzx_[i], lzy_[i], lzz_[i];
+    const Eigen::Matrix3d D = 0.5 * (L + L.transpose());
+    Eigen::Matrix3d s;
+    s << p.sxx[i], p.sxy[i], p.sxz[i], p.sxy[i], p.syy[i], p.syz[i], p.sxz[i], p.syz[i], p.szz[i];
+    const Eigen::Matrix3d s_old = s;
+    double plastic = 0.0;
+    if (mat.kind == MaterialModel::Kind::snow) {
+      const Eigen::Matrix3d W = 0.5 * (L - L.transpose());
+      s += dt * (W * s - s * W);  // objective (Jaumann) rotation
+      const MdpcStepResult r = mdpc_update(mat.mdpc, D * dt, s, p.eps_vol_pl[i]);
+      plastic = r.plastic_work_density_J_per_m3 * p.mass[i] / rho;
+      const double K = mat.mdpc.bulk_modulus_Pa(), G = mat.mdpc.shear_modulus_Pa();
+      p.sound_speed[i] = std::sqrt((K + 4.0 * G / 3.0) / rho);
+    } else {
+      const double pr = mat.eos.pressure(rho);
+      s = -pr * Eigen::Matrix3d::Identity();
+      p.sound_speed[i] = mat.eos.sound_speed(rho);
+    }
+    p.sxx[i] = s(0, 0), p.syy[i] = s(1, 1), p.szz[i] = s(2, 2);
+    p.sxy[i] = s(0, 1), p.syz[i] = s(1, 2), p.sxz[i] = s(0, 2);
+    p.pressure[i] = -s.trace() / 3.0;
+    p.plastic_work[i] += plastic;
+    plastic_increment_[i] = plastic;
+    // Stress power with the mid-step stress and mid-step volume.
+    const double volume = p.mass[i] * 0.5 * (1.0 / rho_old + 1.0 / rho);
+    stress_power_[i] = volume * (0.5 * (s_old + s)).cwiseProduct(D).sum();
+    if (eps_as > 0.0 && mat.kind == MaterialModel::Kind::snow) {
+      // Gray et al. (2001) eq. 4.7-4.9: repulsive term for tensile principal stresses.
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+      es.computeDirect(s);
+      Eigen::Vector3d rp = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 3; ++a)
+        if (es.eigenvalues()(a) > 0) rp(a) = -eps_as * es.eigenvalues()(a) / (rho * rho);
+      const Eigen::Matrix3d R = es.eigenvectors() * rp.asDiagonal() * es.eigenvectors().transpose();
+      rxx_[i] = R(0, 0), ryy_[i] = R(1, 1), rzz_[i] = R(2, 2);
+      rxy_[i] = R(0, 1), ryz_[i] = R(1, 2), rxz_[i] = R(0, 2);
+    }
+  });
+}
+
+// a_i = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + (R_i + R_j) f_ij^4) grad_i W_ij
+//       + viscous term (Morris et al. 1997) + g.
+// Pi_ij: Monaghan (1992) artificial viscosity.
+void Solver::compute_forces() {
+  switch (m_.kernel.type) {
+    case KernelType::cubic: return compute_forces_t<KernelType::cubic>();
+    case KernelType::quadratic: return compute_forces_t<KernelType::quadratic>();
+    case KernelType::quintic: return compute_forces_t<KernelType::quintic>();
+  }
+}
+
+template <KernelType T>
+void Solver::compute_forces_t() {
+  Particles& p = m_.particles;
+  const Kernel k = m_.kernel;
+  const double s2 = k.support * k.support;
+  const double h = k.h, eta2 = 0.01 * h * h;
+  const double alpha = m_.settings.av_alpha, beta = m_.settings.av_beta;
+  const double* g = m_.settings.gravity;
+  const bool art = any_artificial_stress_;
+  const double inv_wdx = 1.0 / w_dx_;
+  const auto* off = list_.offsets.data();
+  const auto* nb = list_.index.data();
+  // Ghosts carry the artificial stress of their source, mirrored like stress.
+  if (art) {
+    if (rxx_.size() < p.size())
+      for (auto* v : {&rxx_, &ryy_, &rzz_, &rxy_, &ryz_, &rxz_}) v->resize(p.size(), 0.0);
+    for (std::size_t gi = p.n_real; gi < p.size(); ++gi) {
+      const auto s = p.ghost_source[gi];
+      const ShearFlips f = ghost_shear_flips(m_, p.ghost_planes[gi]);
+      rxx_[gi] = rxx_[s], ryy_[gi] = ryy_[s], rzz_[gi] = rzz_[s];
+      rxy_[gi] = f.xy * rxy_[s], ryz_[gi] = f.yz * ryz_[s], rxz_[gi] = f.xz * rxz_[s];
+    }
+  }
+  // sigma / rho^2 of every particle, once per step.
+  const std::size_t n_all = p.size();
+  for (auto* v : {&qxx_, &qyy_, &qzz_, &qxy_, &qyz_, &qxz_}) v->resize(n_all);
+  cosim::parallel_for("sph.stress_over_rho2", n_all, [&](std::size_t i) {
+    const double inv = 1.0 / (p.density[i] * p.density[i]);
+    qxx_[i] = p.sxx[i] * inv, qyy_[i] = p.syy[i] * inv, qzz_[i] = p.szz[i] * inv;
+    qxy_[i] = p.sxy[i] * inv, qyz_[i] = p.syz[i] * inv, qxz_[i] = p.sxz[i] * inv;
+  });
+  const double* qxx = qxx_.data(); const double* qyy = qyy_.data(); const double* qzz = qzz_.data();
+  const double* qxy = qxy_.data(); const double* qyz = qyz_.data(); const double* qxz = qxz_.data();
+  const bool any_water = any_water_;
+  cosim::parallel_for("sph.forces", p.n_real, [&](std::size_t i) {
+    const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
+    const double vxi = p.vx[i], vyi = p.vy[i], vzi = p.vz[i];
+    const double rhoi = p.density[i], ci = p.sound_speed[i];
+    const double axx = qxx[i], ayy = qyy[i], azz = qzz[i];
+    const double axy = qxy[i], ayz = qyz[i], axz = qxz[i];
+    const MaterialModel& mi = m_.materials[p.material[i]];
+    const double mu_i = any_water && mi.kind == MaterialModel::Kind::water ? mi.viscosity : 0.0;
+    double fx = 0, fy = 0, fz = 0;      // stress + artificial stress
+    double vx_ = 0, vy_ = 0, vz_ = 0;   // viscous (artificial + physical)
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nb[e];
+      const double rx = xi - p.x[j], ry = yi - p.y[j], rz = zi - p.z[j];
+      const double r2 = rx * rx + ry * ry + rz * rz;
+      if (r2 >= s2) continue;
+      const double r = std::sqrt(r2);
+      const double f = k.template gradient_over_r_t<T>(r);
+      const double gx = rx * f, gy = ry * f, gz = rz * f;
+      const double mj = p.mass[j], rhoj = p.density[j];
+      double bxx = axx + qxx[j], byy = ayy + qyy[j], bzz = azz + qzz[j];
+      double bxy = axy + qxy[j], byz = ayz + qyz[j], bxz = axz + qxz[j];
+      if (art) {
+        const double fw = k.template value_t<T>(r) * inv_wdx;
+        const double fn = fw * fw * fw * fw;
+        bxx += fn * (rxx_[i] + rxx_[j]), byy += fn * (ryy_[i] + ryy_[j]);
+        bzz += fn * (rzz_[i] + rzz_[j]), bxy += fn * (rxy_[i] + rxy_[j]);
+        byz += fn * (ryz_[i] + ryz_[j]), bxz += fn * (rxz_[i] + rxz_[j]);
+      }
+      fx += mj * (bxx * gx + bxy * gy + bxz * gz);
+      fy += mj * (bxy * gx + byy * gy + byz * gz);
+      fz += mj * (bxz * gx + byz * gy + bzz * gz);
+      const double dvx = vxi - p.vx[j], dvy = vyi - p.vy[j], dvz = vzi - p.vz[j];
+      const double vr = dvx * rx + dvy * ry + dvz * rz;
+      double visc = 0.0;  // coefficient of -grad W
+      if (vr < 0.0 && (alpha > 0 || beta > 0)) {
+        const double mu = h * vr / (r2 + eta2);
+        const double c_bar = 0.5 * (ci + p.sound_speed[j]);
+        const double rho_bar = 0.5 * (rhoi + rhoj);
+        visc = (-alpha * c_bar * mu + beta * mu * mu) / rho_bar;
+      }
+      vx_ -= mj * visc * gx, vy_ -= mj * visc * gy, vz_ -= mj * visc * gz;
+      if (mu_i > 0.0) {
+        const MaterialModel& mj_mat = m_.materials[p.material[j]];
+        const double mu_sum = mu_i + (mj_mat.kind == MaterialModel::Kind::water ? mj_mat.viscosity : 0.0);
+        const double coef = mj * mu_sum / (rhoi * rhoj) * (rx * gx + ry * gy + rz * gz) / (r2 + eta2);
+        vx_ += coef * dvx, vy_ += coef * dvy, vz_ += coef * dvz;
+      }
+    }
+    p.ax[i] = fx + vx_ + g[0];
+    p.ay[i] = fy + vy_ + g[1];
+    p.az[i] = fz + vz_ + g[2];
+    viscous_power_[i] = -p.mass[i] * (vxi * vx_ + vyi * vy_ + vzi * vz_);
+  });
+}
+
+// Penalty contact of particles (spheres of radius dx/2) with rigid
+// cylinders, Coulomb friction regularised so that sticking stops the relative
+// sliding within one step.
+void Solver::compute_contact(double dt) {
+  Particles& p = m_.particles;
+  const double k_n = m_.settings.contact_stiffness;
+  const double rc = 0.5 * m_.settings.spacing;
+  double stored = 0.0;
+  for (auto& b : m_.bodies) {
+    std::fill(contact_fx_.begin(), contact_fx_.end(), 0.0);
+    std::fill(contact_fy_.begin(), contact_fy_.end(), 0.0);
+    std::fill(contact_fz_.begin(), contact_fz_.end(), 0.0);
+    std::fill(contact_dissipation_.begin(), contact_dissipation_.end(), 0.0);
+    cosim::parallel_for("sph.contact", p.n_real, [&](std::size_t i) {
+      const double dx = p.x[i] - b.x, dy = p.y[i] - b.y;
+      const double rr = std::sqrt(dx * dx + dy * dy);
+      const double zb = b.z, zt = b.z + b.thickness;
+      if (rr >= b.radius + rc || p.z[i] <= zb - rc || p.z[i] >= zt + rc) return;
+      const double d_bottom = p.z[i] - (zb - rc), d_top = (zt + rc) - p.z[i];
+      const double d_side = b.radius + rc - rr;
+      double nx = 0, ny = 0, nz = -1, depth = d_bottom;
+      if (d_top < depth) nz = 1, depth = d_top;
+      if (d_side < depth && rr > 0) nx = dx / rr, ny = dy / rr, nz = 0, depth = d_side;
+      const double m = p.mass[i];
+      const double wx = p.vx[i], wy = p.vy[i], wz = p.vz[i] - b.vz;  // relative velocity
+      const double vn = wx * nx + wy * ny + wz * nz;
+      const double damping = 2.0 * 0.2 * std::sqrt(k_n * m);  // 20 % of critical
+      const double fn = std::max(0.0, k_n * depth - damping * vn);
+      const double tx = wx - vn * nx, ty = wy - vn * ny, tz = wz - vn * nz;
+      const double vt = std::sqrt(tx * tx + ty * ty + tz * tz);
+      double ft = 0.0;
+      if (vt > 0.0) ft = std::min(b.friction * fn, m * vt / dt);
+      const double fx = fn * nx - (vt > 0 ? ft * tx / vt : 0.0);
+      const double fy = fn * ny - (vt > 0 ? ft * ty / vt : 0.0);
+      const double fz = fn * nz - (vt > 0 ? ft * tz / vt : 0.0);
+      p.ax[i] += fx / m, p.ay[i] += fy / m, p.az[i] += fz / m;
+      contact_fx_[i] = fx, contact_fy_[i] = fy, contact_fz_[i] = fz;
+      const double damping_force = std::min(damping * std::max(-vn, 0.0), fn);
+      contact_dissipation_[i] = (ft * vt + damping_force * std::max(-vn, 0.0)) * dt;
+    });
+    double fx = 0, fy = 0, fz = 0, dissipated = 0;
+    for (std::size_t i = 0; i < p.n_real; ++i) {
+      fx -= contact_fx_[i], fy -= contact_fy_[i], fz -= contact_fz_[i];
+      dissipated += contact_dissipation_[i];
+      if (contact_fx_[i] != 0 || contact_fy_[i] != 0 || contact_fz_[i] != 0) {
+        const double fn = std::sqrt(contact_fx_[i] * contact_fx_[i] + contact_fy_[i] * contact_fy_[i] +
+                                    contact_fz_[i] * contact_fz_[i]);
+        stored += 0.5 * fn * fn / k_n;
+      }
+    }
+    b.contact_force_x_domain = fx, b.contact_force_y_domain = fy, b.contact_force_z_domain = fz;
+    energy_.contact_dissipation += dissipated;
+  }
+  energy_.contact_elastic = stored;
+}
+
+void Solver::initialise() {
+  Particles& p = m_.particles;
+  w_dx_ = m_.kernel.value(m_.settings.spacing);
+  any_artificial_stress_ = false;
+  any_water_ = false;
+  for (const auto& mat : m_.materials) any_water_ = any_water_ || mat.kind == MaterialModel::Kind::water;
+  if (m_.settings.artificial_stress_epsilon > 0)
+    for (const auto& mat : m_.materials)
+      if (mat.kind == MaterialModel::Kind::snow) any_artificial_stress_ = true;
+  rebuild_if_needed(true);
+  const std::size_t n = p.n_real;
+  for (auto* v : {&lxx_, &lxy_, &lxz_, &lyx_, &lyy_, &lyz_, &lzx_, &lzy_, &lzz_, &stress_power_,
+                  &viscous_power_, &contact_fx_, &contact_fy_, &contact_fz_,
+                  &contact_dissipation_, &plastic_increment_, &wall_power_})
+    v->assign(n, 0.0);
+  for (auto* v : {&rxx_, &ryy_, &rzz_, &rxy_, &ryz_, &rxz_}) v->assign(p.size(), 0.0);
+  compute_rates();
+  update_materials(0.0);
+  refresh_ghost_state(m_);
+  compute_forces();
+  wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), wall_power_.data());
+  compute_contact(1e-30 + stable_dt());
+  energy_ = EnergyBalance{};
+  energy_.contact_elastic = 0.0;
+  update_energy(0.0);
+  energy_.initial_total = energy_.total();
+}
+
+void Solver::update_energy(double dt) {
+  const Particles& p = m_.particles;
+  double ke = 0, el = 0, ip = 0, vp = 0, pl = 0, gw = 0;
+  const double* g = m_.settings.gravity;
+  for (std::size_t i = 0; i < p.n_real; ++i) {
+    const double m = p.mass[i];
+    ke += 0.5 * m * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+    ip += stress_power_[i];
+    vp += viscous_power_[i];
+    pl += plastic_increment_[i];
+    gw += m * (g[0] * p.vx[i] + g[1] * p.vy[i] + g[2] * p.vz[i]) + wall_power_[i];
+    const MaterialModel& mat = m_.materials[p.material[i]];
+    if (mat.kind == MaterialModel::Kind::water) {
+      el += m * mat.eos.energy_per_mass(p.density[i]);
+    } else {
+      // (1/2) sigma : C^-1 : sigma V, isotropic: p^2/(2K) + q^2/(6G)
+      const double K = mat.mdpc.bulk_modulus_Pa(), G = mat.mdpc.shear_modulus_Pa();
+      const double pr = p.pressure[i];
+      const double dxx = p.sxx[i] + pr, dyy = p.syy[i] + pr, dzz = p.szz[i] + pr;
+      const double j2 = 0.5 * (dxx * dxx + dyy * dyy + dzz * dzz) + p.sxy[i] * p.sxy[i] +
+                        p.syz[i] * p.syz[i] + p.sxz[i] * p.sxz[i];
+      el += (pr * pr / (2.0 * K) + j2 / (2.0 * G)) * m / p.density[i];
+    }
+  }
+  double body_work = 0.0;
+  for (const auto& b : m_.bodies) {
+    ke += 0.5 * b.mass_domain * b.vz * b.vz;
+    if (b.prescribed_velocity)
+      body_work += -b.contact_force_z_domain * b.vz;  // the drive balances contact
+    else
+      body_work += b.applied_force_z_now(time_) / b.symmetry_factor * b.vz;
+  }
+  energy_.kinetic = ke;
+  energy_.elastic = el;
+  energy_.internal += ip * dt;
+  energy_.viscous_dissipation += vp * dt;
+  energy_.plastic_dissipation += pl;
+  energy_.external_work += (gw + body_work) * dt;
+}
+
+StepStats Solver::step() {
+  Particles& p = m_.particles;
+  StepStats stats;
+  const double dt = stable_dt();
+  stats.dt = dt;
+  // Kick: v^{n+1/2} = v^{n-1/2} + a^n (dt_prev + dt)/2 (first step: half kick).
+  const double kick = steps_ == 0 ? 0.5 * dt : 0.5 * (dt_prev_ + dt);
+  cosim::parallel_for("sph.kick_drift", p.n_real, [&](std::size_t i) {
+    p.vx[i] += kick * p.ax[i], p.vy[i] += kick * p.ay[i], p.vz[i] += kick * p.az[i];
+    p.x[i] += dt * p.vx[i], p.y[i] += dt * p.vy[i], p.z[i] += dt * p.vz[i];
+  });
+  for (auto& b : m_.bodies) {
+    if (b.prescribed_velocity) {
+      b.vz = b.prescribed_vz;
+    } else {
+      const double force = b.applied_force_z_now(time_) / b.symmetry_factor + b.contact_force_z_domain;
+      b.az = force / b.mass_domain;
+      b.vz += kick * b.az;
+    }
+    b.z += dt * b.vz;
+  }
+  time_ += dt;
+  stats.clamped = clamp_to_walls(m_);
+  const std::size_t before = rebuilds_;
+  rebuild_if_needed(false);
+  stats.rebuilt = rebuilds_ != before;
+  compute_rates();
+  update_materials(dt);
+  refresh_ghost_state(m_);
+  compute_forces();
+  wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), wall_power_.data());
+  compute_contact(dt);
+  update_energy(dt);
+  for (std::size_t i = 0; i < p.n_real; ++i) interactions_ += p.neighbour_count[i];
+  dt_prev_ = dt;
+  ++steps_;
+  return stats;
+}
+
+double Solver::pressure_at(double x, double y, double z) const {
+  const Particles& p = m_.particles;
+  const double s2 = m_.kernel.support * m_.kernel.support;
+  double num = 0, den = 0;
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    const double rx = x - p.x[j], ry = y - p.y[j], rz = z - p.z[j];
+    const double r2 = rx * rx + ry * ry + rz * rz;
+    if (r2 >= s2) continue;
+    const double w = m_.kernel.value(std::sqrt(r2)) * p.mass[j] / p.density[j];
+    num += w * p.pressure[j];
+    den += w;
+  }
+  return den > 0 ? num / den : 0.0;
+}
+
+}  // namespace snow_sph

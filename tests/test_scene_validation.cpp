@@ -1,0 +1,146 @@
+// Bad input is refused before anything runs, with a message that names the
+// file, the line and the field.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+
+#include "cosim/error.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+const char* kValid = R"(name: "small"
+time { end_time_s: 0.01 cfl: 0.3 }
+sph {
+  kernel: CUBIC
+  particle_spacing_m: 0.02
+  smoothing_length_ratio: 1.2
+  gravity_m_per_s2 { z: -9.81 }
+  container { min { x: 0 y: 0 z: 0 } max { x: 0.2 y: 0.2 z: 0.2 } }
+  blocks {
+    region { min { x: 0 y: 0 z: 0 } max { x: 0.2 y: 0.2 z: 0.1 } }
+    material { material_file: "MATERIAL" }
+  }
+  artificial_viscosity { alpha: 1 beta: 1 }
+}
+)";
+
+std::string write_scene(const std::string& name, std::string text) {
+  const std::string dir = test_support::scratch("validation_" + name);
+  const std::string material = test_support::source_dir() + "/configs/materials/snow_soft.textproto";
+  text = std::regex_replace(text, std::regex("MATERIAL"), material);
+  const std::string path = dir + "/scene.textproto";
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+
+// Loads and validates; returns the error message ("" if accepted).
+std::string error_of(const std::string& path, const std::vector<std::string>& sets = {}) {
+  try {
+    const auto scene = cosim::load_scene(path, sets);
+    cosim::ValidationReport report;
+    snow_sph::validate_sph_scene(*scene, report);
+    report.throw_if_failed();
+    return "";
+  } catch (const cosim::Error& e) {
+    return e.what();
+  }
+}
+
+TEST(SceneValidation, ValidSceneIsAccepted) {
+  EXPECT_EQ(error_of(write_scene("valid", kValid)), "");
+}
+
+TEST(SceneValidation, EveryShippedSceneIsValid) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(test_support::source_dir() + "/configs/scenes"))
+    if (entry.path().extension() == ".textproto") EXPECT_EQ(error_of(entry.path().string()), "") << entry.path();
+}
+
+TEST(SceneValidation, UnknownFieldNamesLineAndSuggests) {
+  const auto path = write_scene("unknown", replace(kValid, "particle_spacing_m: 0.02", "particle_spacing: 0.02"));
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(path + ":5:"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown field \"particle_spacing\""), std::string::npos) << e;
+  EXPECT_NE(e.find("Did you mean \"particle_spacing_m\""), std::string::npos) << e;
+}
+
+TEST(SceneValidation, WrongTypeNamesLine) {
+  const auto path = write_scene("type", replace(kValid, "particle_spacing_m: 0.02", "particle_spacing_m: \"fine\""));
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(path + ":5:"), std::string::npos) << e;
+}
+
+TEST(SceneValidation, MissingValueIsNamed) {
+  const auto path = write_scene("missing", replace(kValid, "  particle_spacing_m: 0.02\n", ""));
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find("sph.particle_spacing_m (not set in the file): must be > 0"), std::string::npos) << e;
+}
+
+TEST(SceneValidation, NonPositiveSpacingNamesLineAndField) {
+  const auto path = write_scene("spacing", replace(kValid, "particle_spacing_m: 0.02", "particle_spacing_m: -0.01"));
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(path + ":5:3: sph.particle_spacing_m: must be > 0"), std::string::npos) << e;
+}
+
+TEST(SceneValidation, NegativeDensityInMaterialFileIsTracedToThatFile) {
+  const auto path = write_scene("density", kValid);
+  const std::string e = error_of(path, {"sph.blocks[0].material.snow.density_kg_per_m3=-180"});
+  EXPECT_NE(e.find("--set sph.blocks[0].material.snow.density_kg_per_m3=-180: must be > 0"), std::string::npos) << e;
+  // The same error written in the scene file points at its line.
+  const auto inline_path = write_scene("density_inline",
+      replace(kValid, "material { material_file: \"MATERIAL\" }",
+              "material { material_file: \"MATERIAL\"\n snow { density_kg_per_m3: -180 } }"));
+  const std::string e2 = error_of(inline_path);
+  EXPECT_NE(e2.find(inline_path + ":12:"), std::string::npos) << e2;
+  EXPECT_NE(e2.find("density_kg_per_m3: must be > 0"), std::string::npos) << e2;
+}
+
+TEST(SceneValidation, PoissonRatioOfOneHalfIsRefused) {
+  const auto path = write_scene("poisson", kValid);
+  const std::string e = error_of(path, {"sph.blocks[0].material.snow.poisson_ratio=0.5"});
+  EXPECT_NE(e.find("poisson_ratio=0.5: must be in [0, 0.5)"), std::string::npos) << e;
+  // In the material file itself: the file and line of the field are named.
+  const std::string material = test_support::scratch("poisson_material") + "/m.textproto";
+  std::ofstream(material) << "snow {\n  density_kg_per_m3: 180\n  youngs_modulus_Pa: 1e7\n  poisson_ratio: 0.5\n}\n";
+  const auto path2 = write_scene("poisson2", replace(kValid, "MATERIAL", material));
+  const std::string e2 = error_of(path2);
+  EXPECT_NE(e2.find(material + ":4:3: sph.blocks[0].material.snow.poisson_ratio: must be in [0, 0.5)"), std::string::npos) << e2;
+}
+
+TEST(SceneValidation, BoxSmallerThanBlockIsRefused) {
+  const auto path = write_scene("box", replace(kValid, "max { x: 0.2 y: 0.2 z: 0.1 }", "max { x: 0.3 y: 0.2 z: 0.1 }"));
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(path + ":10:"), std::string::npos) << e;
+  EXPECT_NE(e.find("block does not fit in the container along x"), std::string::npos) << e;
+}
+
+TEST(SceneValidation, TimeStepAboveStableLimitIsRefusedWithTheLimit) {
+  const auto path = write_scene("dt", replace(kValid, "cfl: 0.3", "cfl: 0.3 fixed_dt_s: 1e-3"));
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(path + ":2:"), std::string::npos) << e;
+  EXPECT_NE(e.find("time.fixed_dt_s: time step 0.001 s is above the stable limit h / c = "), std::string::npos) << e;
+}
+
+TEST(SceneValidation, CommandLineOverridesAreChecked) {
+  const auto path = write_scene("override", kValid);
+  EXPECT_NE(error_of(path, {"sph.particle_spacing=0.01"}).find("Did you mean \"particle_spacing_m\""), std::string::npos);
+  EXPECT_NE(error_of(path, {"sph.particle_spacing_m=abc"}).find("is not a valid double"), std::string::npos);
+  EXPECT_NE(error_of(path, {"sph.kernel=CUBICAL"}).find("--set sph.kernel=CUBICAL"), std::string::npos);
+  EXPECT_EQ(error_of(path, {"sph.kernel=QUINTIC", "sph.particle_spacing_m=0.025"}), "");
+}
+
+TEST(SceneValidation, AllProblemsAreReportedAtOnce) {
+  auto text = replace(kValid, "particle_spacing_m: 0.02", "particle_spacing_m: 0");
+  text = replace(text, "end_time_s: 0.01", "end_time_s: -1");
+  const std::string e = error_of(write_scene("many", text));
+  EXPECT_NE(e.find("end_time_s"), std::string::npos) << e;
+  EXPECT_NE(e.find("particle_spacing_m"), std::string::npos) << e;
+}
+}  // namespace
