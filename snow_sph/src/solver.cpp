@@ -113,6 +113,9 @@ void Solver::compute_rates_t() {
   const double s2 = k.support * k.support;
   const double* g = m_.settings.gravity;
   const double delta = m_.settings.density_diffusion_delta;
+  const double eta2 = 0.01 * k.h * k.h;
+  pair_f_.resize(list_.index.size());
+  pair_inv_.resize(list_.index.size());
   const auto* off = list_.offsets.data();
   const auto* nb = list_.index.data();
   cosim::parallel_for("sph.rates", p.n_real, [&](std::size_t i) {
@@ -122,29 +125,47 @@ void Solver::compute_rates_t() {
     const bool diffuse = delta > 0 && mi.kind == MaterialModel::Kind::water;
     const double c_diff = diffuse ? delta * k.h * mi.eos.c0 : 0.0;
     const double hydro = diffuse ? mi.density0 / (mi.eos.c0 * mi.eos.c0) : 0.0;
-    double l[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
     double diffusion = 0.0;
     std::uint32_t count = 0;
+    const double* px = p.x.data(); const double* py = p.y.data(); const double* pz = p.z.data();
+    const double* pvx = p.vx.data(); const double* pvy = p.vy.data(); const double* pvz = p.vz.data();
+    const double* pm = p.mass.data(); const double* prho = p.density.data();
+    float* pf = pair_f_.data();
+    float* pinv = pair_inv_.data();
+    // Branch-free body: pairs beyond the support (list skin) have a zero gradient.
     for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
       const std::uint32_t j = nb[e];
-      const double rx = xi - p.x[j], ry = yi - p.y[j], rz = zi - p.z[j];
-      const double r2 = rx * rx + ry * ry + rz * rz;
-      if (r2 >= s2) continue;
-      ++count;
-      const double f = k.template gradient_over_r_t<T>(std::sqrt(r2));
-      const double gx = rx * f, gy = ry * f, gz = rz * f;
-      const double mj = p.mass[j];
-      const double dvx = p.vx[j] - vxi, dvy = p.vy[j] - vyi, dvz = p.vz[j] - vzi;
-      l[0] += mj * dvx * gx, l[1] += mj * dvx * gy, l[2] += mj * dvx * gz;
-      l[3] += mj * dvy * gx, l[4] += mj * dvy * gy, l[5] += mj * dvy * gz;
-      l[6] += mj * dvz * gx, l[7] += mj * dvz * gy, l[8] += mj * dvz * gz;
-      if (diffuse && m_.materials[p.material[j]].kind == MaterialModel::Kind::water) {
-        // psi_ij . grad W with x_ji = -r: 2 (rho_j - rho_i - drho_hydro) (x_ji . gradW) / r^2
+      const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+      const double r2 = std::max(rx * rx + ry * ry + rz * rz, 1e-24);
+      count += r2 < s2 ? 1u : 0u;
+      const double r = std::sqrt(r2);
+      const double f = k.template gradient_over_r_t<T>(r, 1.0 / r);
+      pf[e] = static_cast<float>(f);  // reused by the force pass (same positions)
+      pinv[e] = static_cast<float>(1.0 / (r2 + eta2));
+      const double mjf = pm[j] * f;
+      const double gx = rx * mjf, gy = ry * mjf, gz = rz * mjf;
+      const double dvx = pvx[j] - vxi, dvy = pvy[j] - vyi, dvz = pvz[j] - vzi;
+      l0 += dvx * gx, l1 += dvx * gy, l2 += dvx * gz;
+      l3 += dvy * gx, l4 += dvy * gy, l5 += dvy * gz;
+      l6 += dvz * gx, l7 += dvz * gy, l8 += dvz * gz;
+    }
+    if (diffuse) {
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nb[e];
+        if (m_.materials[p.material[j]].kind != MaterialModel::Kind::water) continue;
+        const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+        const double r2 = std::max(rx * rx + ry * ry + rz * rz, 1e-24);
+        const double r = std::sqrt(r2);
+        const double f = k.template gradient_over_r_t<T>(r, 1.0 / r);
+        // psi_ij . grad W = 2 (rho_j - rho_i - drho_hydro) (x_ji . grad W) / r^2, and
+        // (x_ji . grad W) / r^2 = -F; drho_hydro = rho0/c^2 g . (x_j - x_i).
         const double drho_h = hydro * (-(g[0] * rx + g[1] * ry + g[2] * rz));
-        const double psi = 2.0 * (p.density[j] - p.density[i] - drho_h);
-        diffusion += psi * (-f) * mj / p.density[j];  // (x_ji . grad W) / r^2 = -F
+        const double psi = 2.0 * (prho[j] - prho[i] - drho_h);
+        diffusion += psi * (-f) * pm[j] / prho[j];
       }
     }
+    double l[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
     const double inv_rho = 1.0 / p.density[i];
     lxx_[i] = l[0] * inv_rho, lxy_[i] = l[1] * inv_rho, lxz_[i] = l[2] * inv_rho;
     lyx_[i] = l[3] * inv_rho, lyy_[i] = l[4] * inv_rho, lyz_[i] = l[5] * inv_rho;
@@ -261,42 +282,57 @@ void Solver::compute_forces_t() {
     const double mu_i = any_water && mi.kind == MaterialModel::Kind::water ? mi.viscosity : 0.0;
     double fx = 0, fy = 0, fz = 0;      // stress + artificial stress
     double vx_ = 0, vy_ = 0, vz_ = 0;   // viscous (artificial + physical)
+    const double* px = p.x.data(); const double* py = p.y.data(); const double* pz = p.z.data();
+    const double* pvx = p.vx.data(); const double* pvy = p.vy.data(); const double* pvz = p.vz.data();
+    const double* pm = p.mass.data(); const double* prho = p.density.data();
+    const double* pc = p.sound_speed.data();
+    const float* pf = pair_f_.data();
+    const float* pinv = pair_inv_.data();
+    // Branch-free body: pairs beyond the support (list skin) have a zero
+    // gradient; F and 1/(r^2 + 0.01 h^2) come from the rates pass.
     for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
       const std::uint32_t j = nb[e];
-      const double rx = xi - p.x[j], ry = yi - p.y[j], rz = zi - p.z[j];
-      const double r2 = rx * rx + ry * ry + rz * rz;
-      if (r2 >= s2) continue;
-      const double r = std::sqrt(r2);
-      const double f = k.template gradient_over_r_t<T>(r);
+      const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+      const double f = pf[e];
+      const double mj = pm[j];
       const double gx = rx * f, gy = ry * f, gz = rz * f;
-      const double mj = p.mass[j], rhoj = p.density[j];
-      double bxx = axx + qxx[j], byy = ayy + qyy[j], bzz = azz + qzz[j];
-      double bxy = axy + qxy[j], byz = ayz + qyz[j], bxz = axz + qxz[j];
-      if (art) {
-        const double fw = k.template value_t<T>(r) * inv_wdx;
-        const double fn = fw * fw * fw * fw;
-        bxx += fn * (rxx_[i] + rxx_[j]), byy += fn * (ryy_[i] + ryy_[j]);
-        bzz += fn * (rzz_[i] + rzz_[j]), bxy += fn * (rxy_[i] + rxy_[j]);
-        byz += fn * (ryz_[i] + ryz_[j]), bxz += fn * (rxz_[i] + rxz_[j]);
-      }
+      const double bxx = axx + qxx[j], byy = ayy + qyy[j], bzz = azz + qzz[j];
+      const double bxy = axy + qxy[j], byz = ayz + qyz[j], bxz = axz + qxz[j];
       fx += mj * (bxx * gx + bxy * gy + bxz * gz);
       fy += mj * (bxy * gx + byy * gy + byz * gz);
       fz += mj * (bxz * gx + byz * gy + bzz * gz);
-      const double dvx = vxi - p.vx[j], dvy = vyi - p.vy[j], dvz = vzi - p.vz[j];
+      const double dvx = vxi - pvx[j], dvy = vyi - pvy[j], dvz = vzi - pvz[j];
       const double vr = dvx * rx + dvy * ry + dvz * rz;
-      double visc = 0.0;  // coefficient of -grad W
-      if (vr < 0.0 && (alpha > 0 || beta > 0)) {
-        const double mu = h * vr / (r2 + eta2);
-        const double c_bar = 0.5 * (ci + p.sound_speed[j]);
-        const double rho_bar = 0.5 * (rhoi + rhoj);
-        visc = (-alpha * c_bar * mu + beta * mu * mu) / rho_bar;
-      }
+      const double mu = h * vr * pinv[e];
+      const double visc_all = (-alpha * 0.5 * (ci + pc[j]) * mu + beta * mu * mu) * 2.0 / (rhoi + prho[j]);
+      const double visc = vr < 0.0 ? visc_all : 0.0;  // Pi_ij acts on approaching pairs only
       vx_ -= mj * visc * gx, vy_ -= mj * visc * gy, vz_ -= mj * visc * gz;
-      if (mu_i > 0.0) {
-        const MaterialModel& mj_mat = m_.materials[p.material[j]];
-        const double mu_sum = mu_i + (mj_mat.kind == MaterialModel::Kind::water ? mj_mat.viscosity : 0.0);
-        const double coef = mj * mu_sum / (rhoi * rhoj) * (rx * gx + ry * gy + rz * gz) / (r2 + eta2);
-        vx_ += coef * dvx, vy_ += coef * dvy, vz_ += coef * dvz;
+    }
+    if (art || mu_i > 0.0) {
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nb[e];
+        const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+        const double r2 = rx * rx + ry * ry + rz * rz;
+        if (r2 >= s2 || r2 == 0.0) continue;
+        const double r = std::sqrt(r2);
+        const double f = k.template gradient_over_r_t<T>(r, 1.0 / r);
+        const double gx = rx * f, gy = ry * f, gz = rz * f;
+        const double mj = pm[j];
+        if (art) {
+          const double fw = k.template value_t<T>(r) * inv_wdx;
+          const double fn = mj * fw * fw * fw * fw;
+          const double cxx = rxx_[i] + rxx_[j], cyy = ryy_[i] + ryy_[j], czz = rzz_[i] + rzz_[j];
+          const double cxy = rxy_[i] + rxy_[j], cyz = ryz_[i] + ryz_[j], cxz = rxz_[i] + rxz_[j];
+          fx += fn * (cxx * gx + cxy * gy + cxz * gz);
+          fy += fn * (cxy * gx + cyy * gy + cyz * gz);
+          fz += fn * (cxz * gx + cyz * gy + czz * gz);
+        }
+        if (mu_i > 0.0) {
+          const MaterialModel& mj_mat = m_.materials[p.material[j]];
+          const double mu_sum = mu_i + (mj_mat.kind == MaterialModel::Kind::water ? mj_mat.viscosity : 0.0);
+          const double coef = mj * mu_sum / (rhoi * prho[j]) * (rx * gx + ry * gy + rz * gz) / (r2 + eta2);
+          vx_ += coef * (vxi - pvx[j]), vy_ += coef * (vyi - pvy[j]), vz_ += coef * (vzi - pvz[j]);
+        }
       }
     }
     p.ax[i] = fx + vx_ + g[0];

@@ -5,6 +5,7 @@
 //    Eng. 139, eq. for W = C (3/16 q^2 - 3/4 q + 3/4), support 2h;
 //  - quintic spline: Morris, Fox & Zhu (1997), J. Comput. Phys. 136, support 3h.
 // Normalisation constants are the 3D ones (Liu & Liu 2003, ch. 3).
+#include <algorithm>
 #include <cmath>
 
 namespace snow_sph {
@@ -75,30 +76,29 @@ struct Kernel {
     return 0.0;
   }
 
-  // (1/r) dW/dr, so that grad_i W_ij = (x_i - x_j) * this. Finite at r -> 0
-  // (cubic, quintic).
+  // (1/r) dW/dr, so that grad_i W_ij = (x_i - x_j) * this; zero beyond the
+  // support. Branch-free (the hot loops evaluate it for every listed pair).
   template <KernelType T>
   double gradient_over_r_t(double r) const {
+    return gradient_over_r_t<T>(r, 1.0 / r);
+  }
+  template <KernelType T>
+  double gradient_over_r_t(double r, double inv_r) const {
     const double q = r * inv_h;
-    const double dq = inv_h;  // dq/dr
-    switch (T) {
-      case KernelType::cubic:
-        if (q < 1.0) return norm * (-3.0 + 2.25 * q) * dq * dq;  // (-3q + 2.25q^2)/q
-        if (q < 2.0) { const double a = 2.0 - q; return q > 0 ? -norm * 0.75 * a * a * dq / r : 0.0; }
-        return 0.0;
-      case KernelType::quadratic:
-        if (q < 2.0 && r > 0) return norm * (0.375 * q - 0.75) * dq / r;
-        return 0.0;
-      case KernelType::quintic: {
-        if (q >= 3.0 || r <= 0) return 0.0;
-        const double a = 3.0 - q, b = 2.0 - q, c = 1.0 - q;
-        double d = -5.0 * a * a * a * a;
-        if (q < 2.0) d += 30.0 * b * b * b * b;
-        if (q < 1.0) d -= 75.0 * c * c * c * c;
-        return norm * d * dq / r;
-      }
+    const double c = norm * inv_h;  // dW/dr = norm * dw/dq / h
+    if constexpr (T == KernelType::cubic) {
+      const double a = std::max(2.0 - q, 0.0);
+      const double inner = c * inv_h * (-3.0 + 2.25 * q);  // (-3q + 2.25q^2) / q / h
+      const double outer = -0.75 * c * a * a * inv_r;
+      return q < 1.0 ? inner : outer;
+    } else if constexpr (T == KernelType::quadratic) {
+      const double a = q < 2.0 ? 1.0 : 0.0;
+      return a * c * (0.375 * q - 0.75) * inv_r;
+    } else {
+      const double a = std::max(3.0 - q, 0.0), b = std::max(2.0 - q, 0.0), e = std::max(1.0 - q, 0.0);
+      const double a2 = a * a, b2 = b * b, e2 = e * e;
+      return c * (-5.0 * a2 * a2 + 30.0 * b2 * b2 - 75.0 * e2 * e2) * inv_r;
     }
-    return 0.0;
   }
 };
 

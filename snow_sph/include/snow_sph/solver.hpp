@@ -78,6 +78,7 @@ class Solver {
   std::vector<double> ref_x_, ref_y_, ref_z_;
   // Per-particle work arrays: velocity gradient and artificial stress.
   std::vector<double> lxx_, lxy_, lxz_, lyx_, lyy_, lyz_, lzx_, lzy_, lzz_;
+  std::vector<float> pair_f_, pair_inv_;  // per listed pair: F = (1/r) dW/dr, 1/(r^2+0.01h^2)
   std::vector<double> qxx_, qyy_, qzz_, qxy_, qyz_, qxz_;  // sigma / rho^2
   std::vector<double> rxx_, ryy_, rzz_, rxy_, ryz_, rxz_;
   std::vector<double> stress_power_, viscous_power_, contact_fx_, contact_fy_, contact_fz_;

@@ -1,0 +1,62 @@
+// The launcher as a user runs it: cosim check / run / study, through the
+// real executables (cosim starts snow_sph as a child process).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "test_support.hpp"
+
+namespace {
+
+std::string bin() {
+  const char* b = std::getenv("COSIM_BIN_DIR");
+  return b ? b : "build/bin";
+}
+
+// Runs a command; returns exit code and combined output.
+std::pair<int, std::string> shell(const std::string& command) {
+  std::string output;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return {WEXITSTATUS(status), output};
+}
+
+TEST(Launcher, CheckAcceptsAGoodSceneAndRefusesABadOne) {
+  auto [ok, out] = shell(bin() + "/cosim check " + test_support::scene_path("plate_sinkage"));
+  EXPECT_EQ(ok, 0) << out;
+  auto [bad, msg] = shell(bin() + "/cosim check " + test_support::scene_path("plate_sinkage") +
+                          " --set sph.particle_spacing_m=-1");
+  EXPECT_EQ(bad, 2) << msg;
+  EXPECT_NE(msg.find("--set sph.particle_spacing_m=-1: must be > 0"), std::string::npos) << msg;
+}
+
+TEST(Launcher, RunStartsOnlyTheTerrainSolver) {
+  const auto dir = test_support::scratch("launcher_run");
+  auto [code, out] = shell(bin() + "/cosim run " + test_support::scene_path("dam_break") + " --out " + dir +
+                           " --set time.end_time_s=0.005 --quiet --no-vtk");
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("needs: snow_sph alone (no tyre, no DDS)"), std::string::npos) << out;
+  EXPECT_NE(out.find("final_front_m"), std::string::npos) << out;  // results printed
+  const auto summary = nlohmann::json::parse(std::ifstream(dir + "/summary.json"));
+  EXPECT_EQ(summary["status"], "completed");
+  EXPECT_EQ(summary["overrides"]["time.end_time_s"], "0.005");
+}
+
+TEST(Launcher, StudyWritesTableAndPlot) {
+  const auto dir = test_support::scratch("launcher_study");
+  auto [code, out] = shell(bin() + "/cosim study " + test_support::source_dir() +
+                           "/tests/test_launcher.textproto --out " + dir + " --no-vtk");
+  ASSERT_EQ(code, 0) << out;
+  std::ifstream table(dir + "/table.csv");
+  std::string header, row1, row2;
+  std::getline(table, header), std::getline(table, row1), std::getline(table, row2);
+  EXPECT_EQ(header, "case,particle_spacing_m,particles,steps,wall_time_s,final_front_m,reference,relative_error");
+  EXPECT_EQ(row1.rfind("coarse,0.0057,", 0), 0u) << row1;
+  EXPECT_EQ(row2.rfind("fine,0.0028575,", 0), 0u) << row2;
+  EXPECT_GT(std::filesystem::file_size(dir + "/error_vs_runtime.png"), 1000u);
+}
+
+}  // namespace
