@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
@@ -114,6 +115,28 @@ void VtkSeries::write_index() const {
   nlohmann::json files = nlohmann::json::array();
   for (const auto& [name, t] : entries_) files.push_back({{"name", name}, {"time", t}});
   write_json(folder_ + "/" + name_ + ".vtk.series", {{"file-series-version", "1.0"}, {"files", files}});
+}
+
+bool plot_csv(const std::string& csv, const std::string& png, int x_column,
+              const std::vector<PlotSeries>& series, const std::string& title,
+              const std::string& x_label, const std::string& y_label,
+              const std::string& extra_commands) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+  const std::string script = png + ".gp";
+  {
+    std::ofstream gp(script);
+    gp << "set terminal pngcairo size 900,600 font ',11'\nset output '" << png << "'\n"
+       << "set datafile separator ','\nset key autotitle columnhead\nset grid\n"
+       << "set title '" << title << "'\nset xlabel '" << x_label << "'\nset ylabel '" << y_label << "'\n"
+       << extra_commands << "plot ";
+    for (std::size_t k = 0; k < series.size(); ++k)
+      gp << (k ? ", " : "") << "'" << csv << "' using " << x_column << ":" << series[k].column
+         << " with lines lw 2 title '" << series[k].title << "'";
+    gp << "\n";
+  }
+  const bool ok = std::system(("gnuplot '" + script + "' >/dev/null 2>&1").c_str()) == 0;
+  std::remove(script.c_str());
+  return ok;
 }
 
 }  // namespace cosim

@@ -177,6 +177,7 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
       progress.update(solver.time(), solver.steps());
     }
     record(true);
+    if (vtk && vtk->frames() > 0 && next_vtk - vtk_interval < solver.time() - 1e-12) write_vtk();
     progress.finish(solver.time(), solver.steps());
     summary["status"] = "completed";
   } catch (const std::exception& e) {
@@ -228,6 +229,30 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
     results["final_front_m"] = surge_front(model);
   }
   summary["results"] = results;
+  // Pictures a person would rather look at than read.
+  try {
+    energy_csv.reset(), bodies_csv.reset(), front_csv.reset(), probe_csv.reset();
+    nlohmann::json plots = nlohmann::json::array();
+    if (cosim::plot_csv(out + "/energy.csv", out + "/energy.png", 1,
+                        {{2, "kinetic"}, {3, "internal"}, {6, "viscous"}, {8, "external work"}},
+                        scene.name() + ": energy", "time [s]", "energy [J]"))
+      plots.push_back("energy.png");
+    if (!model.bodies.empty() &&
+        cosim::plot_csv(out + "/bodies.csv", out + "/bodies.png", 1, {{3, model.bodies[0].name + " displacement"}},
+                        scene.name() + ": " + model.bodies[0].name + " displacement", "time [s]", "displacement [m]"))
+      plots.push_back("bodies.png");
+    if (sph.probes().surge_front() &&
+        cosim::plot_csv(out + "/front.csv", out + "/front.png", 1, {{2, "surge front"}},
+                        scene.name() + ": surge front", "time [s]", "front position [m]"))
+      plots.push_back("front.png");
+    if (sph.probes().floor_pressure() &&
+        cosim::plot_csv(out + "/floor_pressure.csv", out + "/floor_pressure.png", 1, {{2, "floor pressure"}},
+                        scene.name() + ": floor pressure", "time [s]", "pressure [Pa]"))
+      plots.push_back("floor_pressure.png");
+    summary["plots"] = plots;
+  } catch (const std::exception&) {
+    // Plots are a convenience; the numbers are already on disk.
+  }
   cosim::write_json(out + "/summary.json", summary);
   if (summary["status"] == "failed") throw cosim::Error(summary["error"].get<std::string>());
   return summary;

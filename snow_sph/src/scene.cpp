@@ -147,6 +147,8 @@ void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepor
       r.fail(bl.where("material"), "give snow { ... }, water { ... } or material_file");
     }
   }
+  if (sph.quasi_static_damping_per_s() < 0)
+    r.fail(loc.where("quasi_static_damping_per_s"), "must be >= 0");
   for (int k = 0; k < sph.rigid_bodies_size(); ++k) {
     const auto& b = sph.rigid_bodies(k);
     const auto l = loc.child("rigid_bodies", k);
@@ -232,6 +234,7 @@ Model build_model(const sc::Scene& scene) {
   st.av_beta = sph.artificial_viscosity().beta();
   st.artificial_stress_epsilon = sph.artificial_stress_epsilon();
   st.density_diffusion_delta = sph.density_diffusion_delta();
+  st.damping_per_s = sph.quasi_static_damping_per_s();
   st.gravity[0] = sph.gravity_m_per_s2().x();
   st.gravity[1] = sph.gravity_m_per_s2().y();
   st.gravity[2] = sph.gravity_m_per_s2().z();

@@ -272,6 +272,7 @@ void Solver::compute_forces_t() {
   const double* qxx = qxx_.data(); const double* qyy = qyy_.data(); const double* qzz = qzz_.data();
   const double* qxy = qxy_.data(); const double* qyz = qyz_.data(); const double* qxz = qxz_.data();
   const bool any_water = any_water_;
+  const double damping = m_.settings.damping_per_s;
   cosim::parallel_for("sph.forces", p.n_real, [&](std::size_t i) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
     const double vxi = p.vx[i], vyi = p.vy[i], vzi = p.vz[i];
@@ -335,6 +336,8 @@ void Solver::compute_forces_t() {
         }
       }
     }
+    // Quasi-static damping (dynamic relaxation), counted as viscous.
+    vx_ -= damping * vxi, vy_ -= damping * vyi, vz_ -= damping * vzi;
     p.ax[i] = fx + vx_ + g[0];
     p.ay[i] = fy + vy_ + g[1];
     p.az[i] = fz + vz_ + g[2];

@@ -61,4 +61,16 @@ class VtkSeries {
   std::vector<std::pair<std::string, double>> entries_;
 };
 
+// A PNG line plot of CSV columns (1-based column numbers) drawn by gnuplot.
+// Returns false (and writes nothing) if gnuplot is not available: a missing
+// plot never fails a run.
+struct PlotSeries {
+  int column;
+  std::string title;
+};
+bool plot_csv(const std::string& csv, const std::string& png, int x_column,
+              const std::vector<PlotSeries>& series, const std::string& title,
+              const std::string& x_label, const std::string& y_label,
+              const std::string& extra_commands = "");
+
 }  // namespace cosim

@@ -63,6 +63,7 @@ struct Settings {
   double av_alpha = 1.0, av_beta = 1.0;
   double artificial_stress_epsilon = 0.0;
   double density_diffusion_delta = 0.0;
+  double damping_per_s = 0.0;
   double gravity[3] = {0.0, 0.0, -9.81};
   double spacing = 0.0;
   double contact_stiffness = 0.0;  // per particle [N/m]
