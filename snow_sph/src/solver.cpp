@@ -155,9 +155,7 @@ void Solver::compute_rates_t() {
         const std::uint32_t j = nb[e];
         if (m_.materials[p.material[j]].kind != MaterialModel::Kind::water) continue;
         const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
-        const double r2 = std::max(rx * rx + ry * ry + rz * rz, 1e-24);
-        const double r = std::sqrt(r2);
-        const double f = k.template gradient_over_r_t<T>(r, 1.0 / r);
+        const double f = pf[e];  // from the loop above
         // psi_ij . grad W = 2 (rho_j - rho_i - drho_hydro) (x_ji . grad W) / r^2, and
         // (x_ji . grad W) / r^2 = -F; drho_hydro = rho0/c^2 g . (x_j - x_i).
         const double drho_h = hydro * (-(g[0] * rx + g[1] * ry + g[2] * rz));
@@ -316,7 +314,7 @@ void Solver::compute_forces_t() {
         const double r2 = rx * rx + ry * ry + rz * rz;
         if (r2 >= s2 || r2 == 0.0) continue;
         const double r = std::sqrt(r2);
-        const double f = k.template gradient_over_r_t<T>(r, 1.0 / r);
+        const double f = pf[e];  // from the rates pass
         const double gx = rx * f, gy = ry * f, gz = rz * f;
         const double mj = pm[j];
         if (art) {
