@@ -59,4 +59,21 @@ TEST(Launcher, StudyWritesTableAndPlot) {
   EXPECT_GT(std::filesystem::file_size(dir + "/error_vs_runtime.png"), 1000u);
 }
 
+TEST(Launcher, InterruptedRunKeepsItsOutputs) {
+  const auto dir = test_support::scratch("launcher_interrupt");
+  // SIGTERM two seconds into a long run: the run must stop cleanly.
+  auto [code, out] = shell("bash -c '" + bin() + "/snow_sph " + test_support::scene_path("dam_break") +
+                           " --out " + dir + " --quiet --no-vtk & pid=$!; sleep 2; kill -TERM $pid; wait $pid; exit $?'");
+  EXPECT_EQ(code, 2) << out;
+  EXPECT_NE(out.find("interrupted by a signal at step"), std::string::npos) << out;
+  const auto summary = nlohmann::json::parse(std::ifstream(dir + "/summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_GT(summary["steps"].get<long>(), 0);
+  std::ifstream front(dir + "/front.csv");
+  std::string line;
+  int rows = 0;
+  while (std::getline(front, line)) ++rows;
+  EXPECT_GT(rows, 2);
+}
+
 }  // namespace

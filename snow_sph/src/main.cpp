@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cosim/error.hpp"
+#include "cosim/interrupt.hpp"
 #include "snow_sph/run.hpp"
 #include "snow_sph/scene.hpp"
 
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
   CLI11_PARSE(app, argc, argv);
+  cosim::install_interrupt_handler();
   try {
     const auto scene = cosim::load_scene(scene_file, sets);
     cosim::ValidationReport report;

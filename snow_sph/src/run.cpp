@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cosim/error.hpp"
+#include "cosim/interrupt.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/parallel.hpp"
 #include "cosim/progress.hpp"
@@ -164,6 +165,9 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
       const StepStats st = solver.step();
       dt_min = std::min(dt_min, st.dt), dt_max = std::max(dt_max, st.dt), dt_sum += st.dt;
       clamped += st.clamped;
+      if (cosim::interrupt_requested())
+        throw cosim::Error("interrupted by a signal at step " + std::to_string(solver.steps()) +
+                           ", t = " + std::to_string(solver.time()) + " s");
       if (!solver.finite())
         throw cosim::Error("the solution became non-finite (NaN/Inf) at step " +
                            std::to_string(solver.steps()) + ", t = " + std::to_string(solver.time()) + " s");
