@@ -329,7 +329,7 @@ void Solver::compute_forces_t() {
         if (mu_i > 0.0) {
           const MaterialModel& mj_mat = m_.materials[p.material[j]];
           const double mu_sum = mu_i + (mj_mat.kind == MaterialModel::Kind::water ? mj_mat.viscosity : 0.0);
-          const double coef = mj * mu_sum / (rhoi * prho[j]) * (rx * gx + ry * gy + rz * gz) / (r2 + eta2);
+          const double coef = mj * mu_sum / (rhoi * prho[j]) * (rx * gx + ry * gy + rz * gz) * pinv[e];
           vx_ += coef * (vxi - pvx[j]), vy_ += coef * (vyi - pvy[j]), vz_ += coef * (vzi - pvz[j]);
         }
       }
