@@ -241,7 +241,7 @@ void Solver::compute_forces_t() {
   Particles& p = m_.particles;
   const Kernel k = m_.kernel;
   const double s2 = k.support * k.support;
-  const double h = k.h, eta2 = 0.01 * h * h;
+  const double h = k.h;
   const double alpha = m_.settings.av_alpha, beta = m_.settings.av_beta;
   const double* g = m_.settings.gravity;
   const bool art = any_artificial_stress_;
