@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", run.sets, "override a scene field: field.path=value");
   run_cmd->add_flag("--quiet", run.quiet, "no progress line");
   run_cmd->add_flag("--no-vtk", run.no_vtk, "do not write VTK files");
+  run_cmd->add_flag("--mesh-only", run.mesh_only, "tyre scenes: write the meshes and their statistics only");
   std::string check_file;
   std::vector<std::string> check_sets;
   auto* check_cmd = app.add_subcommand("check", "validate a scene without running it");

@@ -10,19 +10,23 @@
 #include "cosim/outputs.hpp"
 #include "cosim/process.hpp"
 #include "snow_sph/scene.hpp"
+#include "tyre_fe/scene.hpp"
 
 namespace cosim {
 
 std::vector<std::string> participants(const scene::Scene& scene) {
-  std::vector<std::string> list;
-  if (scene.has_sph()) list.push_back("snow_sph");
-  if (list.empty()) throw Error("scene '" + scene.name() + "' has nothing to run (no sph terrain)");
-  return list;
+  if (scene.has_sph() && scene.has_tyre())
+    throw Error("scene '" + scene.name() + "' has a tyre and an SPH terrain: the coupled run (tyre_fe + "
+                "snow_sph + coupler over DDS) is not built yet");
+  if (scene.has_tyre()) return {"tyre_fe"};
+  if (scene.has_sph()) return {"snow_sph"};
+  throw Error("scene '" + scene.name() + "' has nothing to run (no `sph` terrain, no `tyre`)");
 }
 
 void check_scene(const LoadedScene& scene) {
   ValidationReport report;
   snow_sph::validate_sph_scene(scene, report);
+  tyre_fe::validate_tyre_scene(scene, report);
   report.throw_if_failed();
 }
 
@@ -30,12 +34,18 @@ int run_scene_processes(const RunRequest& request) {
   const auto scene = load_scene(request.scene_file, request.sets);
   check_scene(*scene);
   const auto programs = participants(scene->message);
-  std::fprintf(stderr, "cosim: scene '%s' needs: %s alone (no tyre, no DDS)\n",
-               scene->message.name().c_str(), programs.front().c_str());
+  const char* why = programs.front() == "tyre_fe" ? "(tyre on a rigid road: no SPH, no DDS)"
+                                                  : "(no tyre, no DDS)";
+  std::fprintf(stderr, "cosim: scene '%s' needs: %s alone %s\n", scene->message.name().c_str(),
+               programs.front().c_str(), why);
   std::vector<std::string> args{request.scene_file, "--out", request.out_dir};
   for (const auto& s : request.sets) args.insert(args.end(), {"--set", s});
   if (request.quiet) args.push_back("--quiet");
   if (request.no_vtk) args.push_back("--no-vtk");
+  if (request.mesh_only) {
+    if (programs.front() != "tyre_fe") throw Error("--mesh-only applies to tyre scenes");
+    args.push_back("--mesh-only");
+  }
   const int code = run_child(executable_folder() + "/" + programs.front(), args);
   if (code != 0) std::fprintf(stderr, "cosim: %s exited with code %d\n", programs.front().c_str(), code);
   return code;
@@ -59,8 +69,8 @@ void plot(const std::string& dir, const std::string& field, const std::string& t
      << "set title '" << title << "'\n"
      << "set xlabel 'wall time [s]'\nset ylabel '|error| in " << field << " [%]'\n"
      << "set logscale x\nset grid\nset key off\nset offsets graph 0.05, graph 0.15, graph 0.1, graph 0.1\n"
-     << "plot '" << dir << "/table.csv' using 5:(abs($8)*100) every ::1 with linespoints pt 7 ps 1.5 lw 2, "
-     << "'' using 5:(abs($8)*100):1 every ::1 with labels offset 0,1.2\n";
+     << "plot '" << dir << "/table.csv' using 6:(abs($9)*100) every ::1 with linespoints pt 7 ps 1.5 lw 2, "
+     << "'' using 6:(abs($9)*100):1 every ::1 with labels offset 0,1.2\n";
   gp.close();
   const int code = std::system(("gnuplot '" + script + "' 2>&1").c_str());
   if (code != 0) throw Error("gnuplot failed on " + script + " (is gnuplot installed? scripts/setup.sh installs it)");
@@ -84,10 +94,8 @@ int run_study(const std::string& study_file, const std::string& out_dir, bool no
     std::vector<std::string> sets(s.cases(c).set().begin(), s.cases(c).set().end());
     check_scene(*load_scene(scene_file, sets));
   }
-  std::ofstream table(out_dir + "/table.csv");
-  table << "case,particle_spacing_m,particles,steps,wall_time_s," << s.result_field()
-        << ",reference,relative_error\n";
-  nlohmann::json rows = nlohmann::json::array();
+  // Run every case, then tabulate (the last case is the reference when comparing with the finest).
+  std::vector<nlohmann::json> summaries;
   for (int c = 0; c < s.cases_size(); ++c) {
     const auto& k = s.cases(c);
     RunRequest request{scene_file, out_dir + "/" + k.label(),
@@ -95,25 +103,46 @@ int run_study(const std::string& study_file, const std::string& out_dir, bool no
     std::fprintf(stderr, "cosim study: case %d/%d '%s'\n", c + 1, s.cases_size(), k.label().c_str());
     const int code = run_scene_processes(request);
     if (code != 0) throw Error("study case '" + k.label() + "' failed (exit code " + std::to_string(code) + ")");
-    const auto summary = nlohmann::json::parse(read_file(request.out_dir + "/summary.json"));
-    const auto& result = summary["results"][s.result_field()];
-    if (!result.is_number())
+    summaries.push_back(nlohmann::json::parse(read_file(request.out_dir + "/summary.json")));
+    if (!summaries.back()["results"][s.result_field()].is_number())
       throw Error(loc.where("result_field") + ": summary of case '" + k.label() + "' has no result '" +
                   s.result_field() + "'");
+  }
+  const double reference = s.compare_with_last_case()
+                               ? summaries.back()["results"][s.result_field()].get<double>()
+                               : s.reference_value();
+  std::ofstream table(out_dir + "/table.csv");
+  table << "case,particle_spacing_m,size,time_step_s,steps,wall_time_s," << s.result_field()
+        << ",reference,relative_error";
+  for (const auto& f : s.extra_result_fields()) table << "," << f;
+  table << "\n";
+  nlohmann::json rows = nlohmann::json::array();
+  for (int c = 0; c < s.cases_size(); ++c) {
+    const auto& summary = summaries[c];
+    const auto& label = s.cases(c).label();
+    const auto& result = summary["results"][s.result_field()];
     const double value = result.get<double>();
-    const double error = s.reference_value() != 0 ? (value - s.reference_value()) / s.reference_value() : 0.0;
-    table << k.label() << "," << csv_number(summary["particle_spacing_m"]) << ","
-          << summary["particles"].get<long>() << "," << summary["steps"].get<long>() << ","
-          << csv_number(summary["wall_time_s"]) << "," << csv_number(result) << ","
-          << s.reference_value() << "," << csv_number(error) << "\n";
-    table.flush();
-    rows.push_back({{"case", k.label()}, {"wall_time_s", summary["wall_time_s"]},
-                    {s.result_field(), value}, {"relative_error", error},
-                    {"particles", summary["particles"]}, {"steps", summary["steps"]}});
+    const double error = reference != 0 ? (value - reference) / reference : 0.0;
+    // size: particles (SPH) or elements (FE); time step: the mean (SPH) or the fixed step (FE).
+    const nlohmann::json size = summary.contains("particles") ? summary["particles"] : summary.value("elements", nlohmann::json());
+    nlohmann::json dt = summary.value("dt_s", nlohmann::json());
+    if (dt.is_object()) dt = dt.value("mean", nlohmann::json());
+    table << label << "," << csv_number(summary.value("particle_spacing_m", nlohmann::json())) << ","
+          << csv_number(size) << "," << csv_number(dt) << "," << summary["steps"].get<long>() << ","
+          << csv_number(summary["wall_time_s"]) << "," << csv_number(result) << "," << reference << ","
+          << csv_number(error);
+    nlohmann::json row = {{"case", label}, {"wall_time_s", summary["wall_time_s"]}, {s.result_field(), value},
+                          {"relative_error", error}, {"size", size}, {"steps", summary["steps"]}};
+    for (const auto& f : s.extra_result_fields()) {
+      table << "," << csv_number(summary["results"].value(f, nlohmann::json()));
+      row[f] = summary["results"].value(f, nlohmann::json());
+    }
+    table << "\n";
+    rows.push_back(row);
   }
   table.close();
   write_json(out_dir + "/summary.json", {{"study", s.name()}, {"scene", scene_file},
-                                         {"reference_value", s.reference_value()},
+                                         {"reference_value", reference}, {"compared_with_last_case", s.compare_with_last_case()},
                                          {"reference_source", s.reference_source()}, {"cases", rows}});
   plot(out_dir, s.result_field(), s.name() + ": error against run time");
   std::fprintf(stderr, "cosim study: wrote %s/table.csv and %s/error_vs_runtime.png\n", out_dir.c_str(), out_dir.c_str());

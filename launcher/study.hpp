@@ -7,8 +7,8 @@
 
 namespace cosim {
 
-// The programs a scene needs, in start order (today: snow_sph for a terrain
-// scene; a tyre on a rigid road will need tyre_fe alone).
+// The programs a scene needs, in start order: snow_sph alone for a terrain
+// scene, tyre_fe alone for a tyre on a rigid road.
 std::vector<std::string> participants(const scene::Scene& scene);
 
 // Validates every part of a scene; throws cosim::Error listing all problems.
@@ -20,6 +20,7 @@ struct RunRequest {
   std::vector<std::string> sets;
   bool quiet = false;
   bool no_vtk = false;
+  bool mesh_only = false;  // tyre scenes: write the meshes only
 };
 // Starts the participants of the scene and waits; returns the exit code.
 int run_scene_processes(const RunRequest& request);

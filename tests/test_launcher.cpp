@@ -53,7 +53,7 @@ TEST(Launcher, StudyWritesTableAndPlot) {
   std::ifstream table(dir + "/table.csv");
   std::string header, row1, row2;
   std::getline(table, header), std::getline(table, row1), std::getline(table, row2);
-  EXPECT_EQ(header, "case,particle_spacing_m,particles,steps,wall_time_s,final_front_m,reference,relative_error");
+  EXPECT_EQ(header, "case,particle_spacing_m,size,time_step_s,steps,wall_time_s,final_front_m,reference,relative_error");
   EXPECT_EQ(row1.rfind("coarse,0.0057,", 0), 0u) << row1;
   EXPECT_EQ(row2.rfind("fine,0.0028575,", 0), 0u) << row2;
   EXPECT_GT(std::filesystem::file_size(dir + "/error_vs_runtime.png"), 1000u);

@@ -1,0 +1,46 @@
+#pragma once
+// Outputs of a tyre run besides summary.json and tyre.csv: VTK files of the
+// meshes and of the deforming 3D model (with a .vtk.series index for ParaView),
+// the footprint (contact pressure per node, CSV and PNG), and PNG plots.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tyre_fe/model3d.hpp"
+#include "tyre_fe/solver3d.hpp"
+
+namespace tyre_fe {
+
+void write_cross_section_vtk(const std::string& path, const CrossSection& section,
+                             const std::vector<Eigen::Vector2d>& positions);
+void write_mesh_vtk(const std::string& path, const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions);
+void write_facets_vtk(const std::string& path, const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions);
+
+// Frames of the 3D model every `interval_s` of simulated time (0: none):
+// tyre_NNNNN.vtk (hexahedra; displacement, velocity) and surface_NNNNN.vtk
+// (tagged facets; contact pressure), indexed by tyre.vtk.series / surface.vtk.series.
+class FrameWriter {
+ public:
+  FrameWriter(std::string folder, double interval_s);
+  void maybe_write(const Model3d& model, const State3d& s);
+  void write(const Model3d& model, const State3d& s);
+
+ private:
+  std::string folder_;
+  double interval_s_, next_s_ = 0.0;
+  double last_written_s_ = -1.0;
+  std::vector<std::pair<std::string, double>> tyre_frames_, surface_frames_;
+};
+
+// Contact pressure per contact node [Pa] = normal force / tributary area.
+std::vector<double> contact_pressure_Pa(const Model3d& model, const State3d& s);
+
+// footprint.csv (x, y, contact pressure of the nodes in contact) and footprint.png.
+void write_footprint(const std::string& folder, const Model3d& model, const State3d& s);
+
+// PNG plots of tyre.csv (rim height, road forces, energies); never fails a run.
+void write_plots(const std::string& folder);
+
+}  // namespace tyre_fe

@@ -1,0 +1,26 @@
+#pragma once
+// Running a tyre scene end to end: cross-section -> axisymmetric inflation ->
+// revolve (results transfer) -> 3D check at rest -> loading on the road ->
+// rolling, with summary.json, CSV time series, VTK and PNG outputs
+// (docs/tyre_fe.md lists them).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/scene_io.hpp"
+
+namespace tyre_fe {
+
+struct RunOptions {
+  std::string out_dir;
+  bool quiet = false;
+  bool write_vtk = true;
+  bool mesh_only = false;  // also set by the scene's tyre.mesh_only
+};
+
+// Runs the scene; returns the summary (also written to out_dir/summary.json).
+// On failure the summary says "status": "failed" with the error, all outputs so
+// far are kept, and cosim::Error is rethrown.
+nlohmann::json run_tyre_scene(const cosim::LoadedScene& scene, const RunOptions& options);
+
+}  // namespace tyre_fe

@@ -1,0 +1,114 @@
+#pragma once
+// Explicit central-difference step of the 3D tyre (Belytschko, Liu & Moran 2000,
+// box 6.1): lumped mass, one-point hexahedra, follower inflation pressure on the
+// inner liner, a rigid rim (reference node at the wheel centre, free in x, z and
+// rotation about y, ISO 8855) and a flat rigid road with penalty contact and
+// Coulomb friction. A step is a list of stages over explicit state:
+//   element forces -> gather -> pressure -> road contact -> damping
+//   -> rim rigid body -> velocity and position update -> energy.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tyre_fe/model3d.hpp"
+
+namespace tyre_fe {
+
+// How the rim is driven in the current stage.
+struct RimDrive {
+  bool hold_x = true;              // x fixed (loading) or at `forward_speed`
+  double forward_speed_m_per_s = 0.0;
+  bool spin_prescribed = true;     // spin at `angular_velocity` (0: held) ...
+  double angular_velocity_rad_per_s = 0.0;
+  double drive_torque_Nm = 0.0;    // ... or free with this torque about y
+  double wheel_load_N = 0.0;       // downward force on the rim node
+  bool hold_z = false;             // z fixed (check at rest after the transfer)
+};
+
+struct RimState {
+  double x = 0.0, z = 0.0, angle = 0.0;       // rim node position and spin angle
+  double vx = 0.0, vz = 0.0, omega = 0.0;
+  double mass_kg = 0.0, inertia_kg_m2 = 0.0;  // rim + the tyre nodes it carries
+  // Moment about y and force that the tyre exerts on the rim (from the rim
+  // nodes), and RM2: the moment the rim applies to the tyre (ISO y).
+  double tyre_force_x_N = 0.0, tyre_force_z_N = 0.0, tyre_moment_y_Nm = 0.0;
+  double rm2_Nm = 0.0;
+};
+
+struct RoadState {
+  bool present = false;
+  double height_m = 0.0;  // road plane z
+  double friction_coefficient = 0.0;
+  double penalty_scale = 0.1;
+  // Per contact node (Model3d::contact_nodes): stick anchor in x, y and contact flag.
+  std::vector<double> anchor_x, anchor_y;
+  std::vector<char> in_contact;
+  std::vector<double> normal_force_N;   // last step
+  // Totals of the last step: force of the road on the tyre, area in contact.
+  double force_x_N = 0.0, force_y_N = 0.0, force_z_N = 0.0, contact_area_m2 = 0.0;
+  double friction_dissipation_J = 0.0;
+};
+
+struct Energies {
+  double kinetic_J = 0.0;
+  double internal_J = 0.0;   // strain + hourglass
+  double hourglass_J = 0.0;
+  double external_work_J = 0.0;  // pressure, wheel load, torque, prescribed motion
+  double damping_work_J = 0.0;   // work of mass damping and bulk viscosity (<= 0)
+  double contact_work_J = 0.0;   // work of the road forces (penalty + friction)
+  double initial_J = 0.0;        // E_kin + E_int at the first step (the inflated state)
+  // |E_kin + E_int - E_0 - W_ext - W_damp - W_contact| / max(E_int, E_kin, |W_ext|)
+  double balance_error() const;
+};
+
+// Wall time spent per stage of the step [s] (filled when State3d::time_stages is set).
+struct StageTimes {
+  double internal_forces_s = 0.0;  // element kernels + gather
+  double contact_s = 0.0;          // road contact
+  double rest_s = 0.0;             // pressure, damping, rim, update, energies
+};
+
+struct State3d {
+  std::vector<double> x, y, z;     // current node positions
+  std::vector<double> vx, vy, vz;  // velocities at t - dt/2
+  std::vector<double> fx, fy, fz;  // total nodal force at t
+  std::vector<double> element_force;  // hex * 24 + a * 3 + k
+  std::vector<double> element_energy;     // strain + hourglass [J]
+  std::vector<double> element_hourglass;  // hourglass part [J]
+  std::vector<double> element_viscous_power;  // bulk viscosity [W]
+  std::vector<double> rim_offset;   // rim node offsets at angle 0 (x, z) per rim node
+  std::vector<int> rim_nodes;
+  RimState rim;
+  RoadState road;
+  Energies energy;
+  double pressure_Pa = 0.0;
+  double damping_per_s = 0.0;       // mass-proportional (dynamic relaxation)
+  double time_s = 0.0;
+  double dt_s = 0.0;
+  std::uint64_t step = 0;
+  bool time_stages = false;
+  StageTimes stage_times;
+};
+
+// The 3D state from reference positions `current` (e.g. the inflated state
+// revolved), at rest; the rim node at the origin.
+State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& current,
+                     double rim_mass_kg, double rim_inertia_kg_m2);
+
+// Puts a flat road `gap` below the lowest outer node.
+void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
+                double penalty_scale);
+
+// One explicit step of size s.dt_s. Returns false if a value went non-finite.
+bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
+
+// Kinetic damping (Cundall 1976; Underwood 1983): sets every velocity (nodes and
+// rim) to zero. Called when the kinetic energy has passed a peak, it drains the
+// energy of the dominant mode; used to bring a loaded tyre to rest.
+void zero_velocities(State3d& s);
+
+// Tread-centre radial position etc.: distance of node i from the rim node in the x-z plane.
+double radial_position(const State3d& s, int node);
+
+}  // namespace tyre_fe

@@ -1,0 +1,47 @@
+// tyre_fe: the explicit FE tyre solver as a program.
+//   tyre_fe SCENE --out DIR [--set field.path=value ...] [--check] [--mesh-only] [--quiet] [--no-vtk]
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "cosim/error.hpp"
+#include "cosim/interrupt.hpp"
+#include "tyre_fe/run.hpp"
+#include "tyre_fe/scene.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"tyre_fe: explicit FE tyre (axisymmetric inflation, 3D pitch model, rigid road)"};
+  std::string scene_file, out_dir = "out";
+  std::vector<std::string> sets;
+  bool check = false, quiet = false, no_vtk = false, mesh_only = false;
+  app.add_option("scene", scene_file, "scene file (.textproto)")->required();
+  app.add_option("--out", out_dir, "output folder");
+  app.add_option("--set", sets, "override a scene field: field.path=value");
+  app.add_flag("--check", check, "validate the scene and exit");
+  app.add_flag("--mesh-only", mesh_only, "write the meshes and their statistics, do not solve");
+  app.add_flag("--quiet", quiet, "no progress line");
+  app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
+  CLI11_PARSE(app, argc, argv);
+  cosim::install_interrupt_handler();
+  try {
+    const auto scene = cosim::load_scene(scene_file, sets);
+    cosim::ValidationReport report;
+    tyre_fe::validate_tyre_scene(*scene, report);
+    if (!scene->message.has_tyre()) report.fail(scene_file, "the scene has no `tyre` section");
+    report.throw_if_failed();
+    if (check) {
+      std::printf("%s: ok\n", scene_file.c_str());
+      return 0;
+    }
+    const auto summary = tyre_fe::run_tyre_scene(*scene, {out_dir, quiet, !no_vtk, mesh_only});
+    std::printf("%s\n", summary["results"].dump(2).c_str());
+    return 0;
+  } catch (const cosim::Error& e) {
+    std::fprintf(stderr, "tyre_fe: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tyre_fe: internal error: %s\n", e.what());
+    return 3;
+  }
+}

@@ -1,0 +1,145 @@
+#include "tyre_fe/model3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "cosim/error.hpp"
+
+namespace tyre_fe {
+namespace {
+
+// Area vector of a quadrilateral facet (half the cross product of its diagonals).
+Eigen::Vector3d facet_area_vector(const std::vector<Eigen::Vector3d>& x, const std::array<int, 4>& n) {
+  return 0.5 * (x[n[2]] - x[n[0]]).cross(x[n[3]] - x[n[1]]);
+}
+
+bool touches_ground(SurfaceTag t) {
+  return t != SurfaceTag::inner_liner && t != SurfaceTag::rim_contact;
+}
+
+}  // namespace
+
+Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSection& section,
+                      const Model3dOptions& options) {
+  Model3d m;
+  m.options = options;
+  m.materials = materials;
+  const std::size_t ne = mesh.hexes.size(), nn = mesh.nodes.size();
+  m.reference.resize(ne);
+  m.material.resize(ne);
+  m.rebar_direction.assign(ne, Eigen::Vector3d::Zero());
+  m.rebar_fraction.assign(ne, 0.0);
+  m.rebar_modulus_Pa.assign(ne, 0.0);
+  m.element_density.resize(ne);
+  m.element_wave_speed.resize(ne);
+  m.node_mass_kg.assign(nn, 0.0);
+
+  double min_dt = std::numeric_limits<double>::infinity();
+  std::vector<double> element_dt(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    double X[8][3];
+    for (int a = 0; a < 8; ++a)
+      for (int k = 0; k < 3; ++k) X[a][k] = mesh.nodes[mesh.hexes[e][a]][k];
+    try {
+      m.reference[e] = hex8_reference(X);
+    } catch (const cosim::Error& err) {
+      throw cosim::Error("hexahedron " + std::to_string(e) + " (" +
+                         region_name(mesh.hex_region[e]) + "): " + err.what());
+    }
+    const int region = static_cast<int>(mesh.hex_region[e]);
+    m.material[e] = region;
+    const SolidMaterial& solid = materials.solid[region];
+    double rho = solid.density_kg_per_m3();
+    double modulus = solid.bulk_modulus_Pa() + 4.0 / 3.0 * solid.shear_modulus_Pa();
+    const RebarLayer& rebar = materials.rebar[region];
+    const int quad = mesh.hex_source_quad[e];
+    if (rebar.area_m2 > 0.0 && quad >= 0) {
+      // a0 = cos(angle) t_meridional + sin(angle) e_theta at the element's angle
+      // (mesh.hpp: x = r sin(theta), z = r cos(theta)).
+      const Eigen::Vector2d t = section.quad_layer_tangent[quad];
+      const double th = mesh.hex_angle_rad[e];
+      const Eigen::Vector3d e_r(std::sin(th), 0.0, std::cos(th));
+      const Eigen::Vector3d e_y(0.0, 1.0, 0.0);
+      const Eigen::Vector3d e_th(std::cos(th), 0.0, -std::sin(th));
+      Eigen::Vector3d a0 = std::cos(rebar.angle_rad) * (t[0] * e_r + t[1] * e_y) +
+                           std::sin(rebar.angle_rad) * e_th;
+      if (a0.norm() > 0.0) {
+        a0.normalize();
+        const double phi = rebar.area_m2 / (rebar.spacing_m * section.quad_layer_thickness_m[quad]);
+        m.rebar_direction[e] = a0;
+        m.rebar_fraction[e] = phi;
+        m.rebar_modulus_Pa[e] = rebar.youngs_modulus_Pa;
+        rho += phi * rebar.density_kg_per_m3;
+        modulus += phi * rebar.youngs_modulus_Pa;
+      }
+    }
+    m.element_density[e] = rho;
+    m.element_wave_speed[e] = std::sqrt(modulus / rho);
+    // Bound of the element's highest frequency (exact for a cube, conservative when
+    // distorted): L_e / c would overestimate the critical step of a one-point hex by up
+    // to sqrt(3) for nearly incompressible rubber.
+    element_dt[e] = options.time_step_safety *
+                    hex8_stable_time_step_s(m.reference[e], rho, solid.bulk_modulus_Pa(), solid.shear_modulus_Pa(),
+                                            materials.hourglass_coefficient, m.rebar_modulus_Pa[e] * m.rebar_fraction[e]);
+    if (element_dt[e] < min_dt) min_dt = element_dt[e], m.dt_controlling_element = static_cast<int>(e);
+  }
+  m.unscaled_dt_s = min_dt;
+  m.stable_dt_s = min_dt;
+  // Mass scaling (Abaqus *FIXED MASS SCALING, DT=target): raise the density of every
+  // element whose stable step is below the target so that it reaches the target.
+  double physical = 0.0, scaled = 0.0;
+  for (std::size_t e = 0; e < ne; ++e) {
+    const double mass = m.element_density[e] * m.reference[e].volume_m3;
+    physical += mass;
+    if (options.mass_scaling_target_dt_s > 0.0 && element_dt[e] < options.mass_scaling_target_dt_s) {
+      const double f = options.mass_scaling_target_dt_s / element_dt[e];
+      m.element_density[e] *= f * f;
+      m.element_wave_speed[e] /= f;
+    }
+    const double me = m.element_density[e] * m.reference[e].volume_m3;
+    scaled += me;
+    for (int a = 0; a < 8; ++a) m.node_mass_kg[mesh.hexes[e][a]] += me / 8.0;
+  }
+  // Every scaled element now has the target step; the others had more.
+  if (options.mass_scaling_target_dt_s > 0.0)
+    m.stable_dt_s = std::max(min_dt, options.mass_scaling_target_dt_s);
+  m.physical_mass_kg = physical;
+  m.added_mass_kg = scaled - physical;
+
+  // node -> element entries (CSR), for a gather that gives the same sums on any thread count.
+  std::vector<int> count(nn + 1, 0);
+  for (const auto& h : mesh.hexes)
+    for (int a : h) ++count[a + 1];
+  for (std::size_t i = 0; i < nn; ++i) count[i + 1] += count[i];
+  m.node_hex_begin = count;
+  m.node_hex_entries.resize(count[nn]);
+  std::vector<int> fill(count.begin(), count.end() - 1);
+  for (std::size_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 8; ++a) m.node_hex_entries[fill[mesh.hexes[e][a]]++] = static_cast<int>(e * 8 + a);
+
+  // Surfaces: pressure on the inner liner; road contact candidates on the outside.
+  std::vector<double> area(nn, 0.0);
+  std::vector<char> outer(nn, 0);
+  for (std::size_t f = 0; f < mesh.facets.size(); ++f) {
+    const auto& facet = mesh.facets[f];
+    if (facet.tag == SurfaceTag::inner_liner) m.pressure_facets.push_back(static_cast<int>(f));
+    if (!touches_ground(facet.tag)) continue;
+    const double a = facet_area_vector(mesh.nodes, facet.nodes).norm();
+    for (int n : facet.nodes) area[n] += a / 4.0, outer[n] = 1;
+  }
+  m.is_rim_node.assign(nn, 0);
+  for (int n : mesh.rim_nodes) m.is_rim_node[n] = 1;
+  for (std::size_t i = 0; i < nn; ++i)
+    if (outer[i] && !m.is_rim_node[i]) {
+      m.contact_nodes.push_back(static_cast<int>(i));
+      m.contact_node_area_m2.push_back(area[i]);
+    }
+  m.mesh = std::move(mesh);
+  return m;
+}
+
+}  // namespace tyre_fe

@@ -1,0 +1,144 @@
+#include "tyre_fe/outputs.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "cosim/error.hpp"
+#include "cosim/outputs.hpp"
+#include "tyre_fe/vtk_mesh.hpp"
+
+namespace tyre_fe {
+namespace {
+
+std::vector<Eigen::Vector3d> positions_of(const State3d& s) {
+  std::vector<Eigen::Vector3d> x(s.x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = Eigen::Vector3d(s.x[i], s.y[i], s.z[i]);
+  return x;
+}
+
+void write_series_index(const std::string& path, const std::vector<std::pair<std::string, double>>& frames) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& [name, t] : frames) files.push_back({{"name", name}, {"time", t}});
+  cosim::write_json(path, {{"file-series-version", "1.0"}, {"files", files}});
+}
+
+bool run_gnuplot(const std::string& script_path, const std::string& script) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+  {
+    std::ofstream gp(script_path);
+    gp << script;
+  }
+  const bool ok = std::system(("gnuplot '" + script_path + "' >/dev/null 2>&1").c_str()) == 0;
+  std::remove(script_path.c_str());
+  return ok;
+}
+
+}  // namespace
+
+// Per facet: the mean contact pressure of its four nodes.
+static VtkField facet_pressure(const Model3d& model, const State3d& s) {
+  const std::vector<double> p = contact_pressure_Pa(model, s);
+  VtkField f{"contact_pressure_Pa", 1, {}};
+  f.values.reserve(model.mesh.facets.size());
+  for (const auto& facet : model.mesh.facets)
+    f.values.push_back(0.25 * (p[facet.nodes[0]] + p[facet.nodes[1]] + p[facet.nodes[2]] + p[facet.nodes[3]]));
+  return f;
+}
+
+void write_cross_section_vtk(const std::string& path, const CrossSection& section,
+                             const std::vector<Eigen::Vector2d>& positions) {
+  VtkField displacement{"displacement_m", 3, {}};
+  for (std::size_t i = 0; i < section.nodes.size(); ++i) {
+    const Eigen::Vector2d u = positions[i] - section.nodes[i];
+    displacement.values.insert(displacement.values.end(), {0.0, u[1], u[0]});  // (x, y, z) = (0, y, r)
+  }
+  write_vtk_cross_section(path, section, positions, {displacement});
+}
+
+void write_mesh_vtk(const std::string& path, const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions) {
+  write_vtk_mesh(path, mesh, positions);
+}
+
+void write_facets_vtk(const std::string& path, const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions) {
+  write_vtk_facets(path, mesh, positions);
+}
+
+std::vector<double> contact_pressure_Pa(const Model3d& model, const State3d& s) {
+  std::vector<double> p(s.x.size(), 0.0);
+  if (!s.road.present) return p;
+  for (std::size_t c = 0; c < model.contact_nodes.size(); ++c)
+    if (s.road.normal_force_N[c] > 0.0 && model.contact_node_area_m2[c] > 0.0)
+      p[model.contact_nodes[c]] = s.road.normal_force_N[c] / model.contact_node_area_m2[c];
+  return p;
+}
+
+FrameWriter::FrameWriter(std::string folder, double interval_s)
+    : folder_(std::move(folder)), interval_s_(interval_s) {}
+
+void FrameWriter::maybe_write(const Model3d& model, const State3d& s) {
+  if (interval_s_ <= 0.0 || s.time_s < next_s_) return;
+  write(model, s);
+  next_s_ = s.time_s + interval_s_;
+}
+
+void FrameWriter::write(const Model3d& model, const State3d& s) {
+  if (interval_s_ <= 0.0 || s.time_s == last_written_s_) return;
+  last_written_s_ = s.time_s;
+  std::ostringstream index;
+  index << std::setw(5) << std::setfill('0') << tyre_frames_.size();
+  const auto x = positions_of(s);
+  std::vector<double> ux(x.size()), uy(x.size()), uz(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    ux[i] = s.x[i] - model.mesh.nodes[i].x();
+    uy[i] = s.y[i] - model.mesh.nodes[i].y();
+    uz[i] = s.z[i] - model.mesh.nodes[i].z();
+  }
+  const std::string tyre_name = "tyre_" + index.str() + ".vtk";
+  const std::string surface_name = "surface_" + index.str() + ".vtk";
+  VtkField displacement{"displacement_m", 3, {}}, velocity{"velocity_m_per_s", 3, {}};
+  displacement.values.reserve(3 * x.size()), velocity.values.reserve(3 * x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    displacement.values.insert(displacement.values.end(), {ux[i], uy[i], uz[i]});
+    velocity.values.insert(velocity.values.end(), {s.vx[i], s.vy[i], s.vz[i]});
+  }
+  write_vtk_mesh(folder_ + "/" + tyre_name, model.mesh, x, {displacement, velocity});
+  write_vtk_facets(folder_ + "/" + surface_name, model.mesh, x, {facet_pressure(model, s)});
+  tyre_frames_.emplace_back(tyre_name, s.time_s);
+  surface_frames_.emplace_back(surface_name, s.time_s);
+  write_series_index(folder_ + "/tyre.vtk.series", tyre_frames_);
+  write_series_index(folder_ + "/surface.vtk.series", surface_frames_);
+}
+
+void write_footprint(const std::string& folder, const Model3d& model, const State3d& s) {
+  const std::vector<double> p = contact_pressure_Pa(model, s);
+  const std::string csv = folder + "/footprint.csv";
+  {
+    std::ofstream out(csv);
+    if (!out) throw cosim::Error(csv + ": cannot write");
+    out << "x_m,y_m,contact_pressure_Pa\n" << std::setprecision(9);
+    for (int n : model.contact_nodes)
+      if (p[n] > 0.0) out << s.x[n] - s.rim.x << "," << s.y[n] << "," << p[n] << "\n";
+  }
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 900,700 font ',11'\nset output '" << folder << "/footprint.png'\n"
+     << "set datafile separator ','\nset size ratio -1\nset grid\n"
+     << "set title 'Footprint: contact pressure [kPa] (x forward, y left)'\n"
+     << "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset cblabel 'kPa'\nset palette rgb 33,13,10\n"
+     << "plot '" << csv << "' using 1:2:($3/1000) every ::1 with points pt 5 ps 1.6 palette notitle\n";
+  run_gnuplot(folder + "/footprint.gp", gp.str());
+}
+
+void write_plots(const std::string& folder) {
+  const std::string csv = folder + "/tyre.csv";
+  cosim::plot_csv(csv, folder + "/rim_height.png", 1, {{4, "rim z"}}, "Rim node height", "time [s]", "z [m]");
+  cosim::plot_csv(csv, folder + "/road_forces.png", 1,
+                  {{11, "road force x"}, {13, "road force z"}, {9, "rim vertical force"}},
+                  "Road contact forces", "time [s]", "force [N]");
+  cosim::plot_csv(csv, folder + "/energies.png", 1,
+                  {{15, "kinetic"}, {16, "internal"}, {17, "hourglass"}, {18, "external work"}},
+                  "Energies", "time [s]", "energy [J]");
+}
+
+}  // namespace tyre_fe

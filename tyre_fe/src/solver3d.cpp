@@ -1,0 +1,297 @@
+#include "tyre_fe/solver3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <omp.h>
+
+#include "cosim/parallel.hpp"
+
+namespace tyre_fe {
+
+double Energies::balance_error() const {
+  const double scale = std::max({std::fabs(internal_J), kinetic_J, std::fabs(external_work_J), 1e-30});
+  return std::fabs(kinetic_J + internal_J - initial_J - external_work_J - damping_work_J - contact_work_J) /
+         scale;
+}
+
+State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& current,
+                     double rim_mass_kg, double rim_inertia_kg_m2) {
+  State3d s;
+  const std::size_t nn = current.size();
+  s.x.resize(nn), s.y.resize(nn), s.z.resize(nn);
+  for (std::size_t i = 0; i < nn; ++i) s.x[i] = current[i].x(), s.y[i] = current[i].y(), s.z[i] = current[i].z();
+  s.vx.assign(nn, 0.0), s.vy.assign(nn, 0.0), s.vz.assign(nn, 0.0);
+  s.fx.assign(nn, 0.0), s.fy.assign(nn, 0.0), s.fz.assign(nn, 0.0);
+  s.element_force.assign(model.mesh.hexes.size() * 24, 0.0);
+  s.element_energy.assign(model.mesh.hexes.size(), 0.0);
+  s.element_viscous_power.assign(model.mesh.hexes.size(), 0.0);
+  s.element_hourglass.assign(model.mesh.hexes.size(), 0.0);
+  s.rim_nodes = model.mesh.rim_nodes;
+  s.rim.mass_kg = rim_mass_kg;
+  s.rim.inertia_kg_m2 = rim_inertia_kg_m2;
+  for (int n : s.rim_nodes) {
+    s.rim_offset.push_back(s.x[n]);
+    s.rim_offset.push_back(s.z[n]);
+    s.rim.mass_kg += model.node_mass_kg[n];
+    s.rim.inertia_kg_m2 += model.node_mass_kg[n] * (s.x[n] * s.x[n] + s.z[n] * s.z[n]);
+  }
+  s.dt_s = model.stable_dt_s;
+  s.road.anchor_x.assign(model.contact_nodes.size(), 0.0);
+  s.road.anchor_y.assign(model.contact_nodes.size(), 0.0);
+  s.road.in_contact.assign(model.contact_nodes.size(), 0);
+  s.road.normal_force_N.assign(model.contact_nodes.size(), 0.0);
+  return s;
+}
+
+void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
+                double penalty_scale) {
+  double lowest = 1e30;
+  for (int n : model.contact_nodes) lowest = std::min(lowest, s.z[n]);
+  s.road.present = true;
+  s.road.height_m = lowest - gap_m;
+  s.road.friction_coefficient = friction_coefficient;
+  s.road.penalty_scale = penalty_scale > 0.0 ? penalty_scale : 0.1;
+}
+
+void zero_velocities(State3d& s) {
+  // The kinetic energy removed is dissipation, so the energy balance still closes.
+  s.energy.damping_work_J -= s.energy.kinetic_J;
+  s.energy.kinetic_J = 0.0;
+  std::fill(s.vx.begin(), s.vx.end(), 0.0);
+  std::fill(s.vy.begin(), s.vy.end(), 0.0);
+  std::fill(s.vz.begin(), s.vz.end(), 0.0);
+  s.rim.vx = s.rim.vz = s.rim.omega = 0.0;
+}
+
+double radial_position(const State3d& s, int node) {
+  return std::hypot(s.x[node] - s.rim.x, s.z[node] - s.rim.z);
+}
+
+namespace {
+
+// Stage 1: per-element forces (Kirchhoff stress of rubber/steel + rebar + linear bulk
+// viscosity, Abaqus/Explicit 6.3.3), written per element; no scatter.
+void element_forces(const Model3d& m, State3d& s) {
+  const double b1 = m.options.bulk_viscosity_linear;
+  cosim::parallel_for("tyre element forces", m.mesh.hexes.size(), [&](std::size_t e) {
+    const auto& h = m.mesh.hexes[e];
+    const Hex8Reference& ref = m.reference[e];
+    double xe[8][3];
+    for (int a = 0; a < 8; ++a) xe[a][0] = s.x[h[a]], xe[a][1] = s.y[h[a]], xe[a][2] = s.z[h[a]];
+    const Eigen::Matrix3d F = hex8_deformation_gradient(ref, xe);
+    double energy = 0.0;
+    const SolidMaterial& solid = m.materials.solid[m.material[e]];
+    Eigen::Matrix3d tau = kirchhoff_stress(solid, F, &energy);
+    if (m.rebar_fraction[e] > 0.0)
+      energy += add_rebar_kirchhoff_stress(m.rebar_direction[e], m.rebar_fraction[e], m.rebar_modulus_Pa[e], F, tau);
+    double power = 0.0;
+    if (b1 > 0.0) {
+      // tr(D) = tr(dv/dX F^-1); sigma_v = b1 rho c L_e tr(D) I (tension positive).
+      Eigen::Matrix3d dvdX = Eigen::Matrix3d::Zero();
+      for (int a = 0; a < 8; ++a) {
+        const Eigen::Vector3d v(s.vx[h[a]], s.vy[h[a]], s.vz[h[a]]);
+        const Eigen::Vector3d g(ref.dNdX[a][0], ref.dNdX[a][1], ref.dNdX[a][2]);
+        dvdX.noalias() += v * g.transpose();
+      }
+      const double J = F.determinant();
+      const double trD = (dvdX * F.inverse()).trace();
+      const double q = b1 * m.element_density[e] * m.element_wave_speed[e] * ref.characteristic_length_m * trD;
+      tau.diagonal().array() += J * q;
+      power = -ref.volume_m3 * J * q * trD;  // dissipated (<= 0 as work done on the body)
+    }
+    double f[8][3];
+    const double hourglass = hex8_internal_forces(ref, xe, F, tau, m.materials.hourglass_coefficient,
+                                                  solid.shear_modulus_Pa(), f);
+    double* out = &s.element_force[e * 24];
+    for (int a = 0; a < 8; ++a)
+      for (int k = 0; k < 3; ++k) out[a * 3 + k] = f[a][k];
+    s.element_energy[e] = energy * ref.volume_m3 + hourglass;
+    s.element_hourglass[e] = hourglass;
+    s.element_viscous_power[e] = power;
+  });
+}
+
+// Stage 2: nodal force = minus the sum of the element internal forces (gather).
+void gather_forces(const Model3d& m, State3d& s) {
+  cosim::parallel_for("tyre gather", s.x.size(), [&](std::size_t i) {
+    double f[3] = {0.0, 0.0, 0.0};
+    for (int k = m.node_hex_begin[i]; k < m.node_hex_begin[i + 1]; ++k) {
+      const double* fe = &s.element_force[static_cast<std::size_t>(m.node_hex_entries[k]) * 3];
+      f[0] -= fe[0], f[1] -= fe[1], f[2] -= fe[2];
+    }
+    s.fx[i] = f[0], s.fy[i] = f[1], s.fz[i] = f[2];
+  });
+}
+
+// Stage 3: inflation pressure, a follower load on the current inner-liner facets,
+// pushing the liner away from the cavity (the facet normal points into the cavity).
+double pressure_forces(const Model3d& m, State3d& s) {
+  if (s.pressure_Pa == 0.0) return 0.0;
+  double power = 0.0;
+  for (int fi : m.pressure_facets) {
+    const auto& n = m.mesh.facets[fi].nodes;
+    const Eigen::Vector3d d1(s.x[n[2]] - s.x[n[0]], s.y[n[2]] - s.y[n[0]], s.z[n[2]] - s.z[n[0]]);
+    const Eigen::Vector3d d2(s.x[n[3]] - s.x[n[1]], s.y[n[3]] - s.y[n[1]], s.z[n[3]] - s.z[n[1]]);
+    const Eigen::Vector3d f = -0.125 * s.pressure_Pa * d1.cross(d2);  // -p A / 4 per node
+    for (int a : n) {
+      s.fx[a] += f.x(), s.fy[a] += f.y(), s.fz[a] += f.z();
+      power += f.x() * s.vx[a] + f.y() * s.vy[a] + f.z() * s.vz[a];
+    }
+  }
+  return power;
+}
+
+// Stage 4: road contact, node to plane. Normal: penalty k = scale m / dt^2 with 10 %
+// of critical damping while approaching. Friction: an elastic stick spring of the
+// same stiffness anchored where the node stuck, capped at mu f_n (Coulomb slip moves
+// the anchor): sticking nodes do not creep, which the rolling radius needs.
+double road_contact(const Model3d& m, State3d& s) {
+  RoadState& r = s.road;
+  r.force_x_N = r.force_y_N = r.force_z_N = r.contact_area_m2 = 0.0;
+  if (!r.present) return 0.0;
+  double power = 0.0;
+  const double dt2 = s.dt_s * s.dt_s;
+  for (std::size_t c = 0; c < m.contact_nodes.size(); ++c) {
+    const int i = m.contact_nodes[c];
+    const double g = r.height_m - s.z[i];
+    if (g <= 0.0) {
+      r.in_contact[c] = 0;
+      r.normal_force_N[c] = 0.0;
+      continue;
+    }
+    const double mass = m.node_mass_kg[i];
+    const double k = r.penalty_scale * mass / dt2;
+    double fn = k * g;
+    if (s.vz[i] < 0.0) fn -= 0.2 * std::sqrt(k * mass) * s.vz[i];
+    if (!r.in_contact[c]) r.anchor_x[c] = s.x[i], r.anchor_y[c] = s.y[i], r.in_contact[c] = 1;
+    double ftx = -k * (s.x[i] - r.anchor_x[c]), fty = -k * (s.y[i] - r.anchor_y[c]);
+    const double ft = std::hypot(ftx, fty), limit = r.friction_coefficient * fn;
+    if (ft > limit) {
+      const double scale = ft > 0.0 ? limit / ft : 0.0;
+      ftx *= scale, fty *= scale;
+      r.anchor_x[c] = s.x[i] + ftx / k, r.anchor_y[c] = s.y[i] + fty / k;
+    }
+    s.fx[i] += ftx, s.fy[i] += fty, s.fz[i] += fn;
+    r.force_x_N += ftx, r.force_y_N += fty, r.force_z_N += fn;
+    r.normal_force_N[c] = fn;
+    r.contact_area_m2 += m.contact_node_area_m2[c];
+    power += ftx * s.vx[i] + fty * s.vy[i] + fn * s.vz[i];
+  }
+  return power;
+}
+
+// Stage 5: rim rigid body (free nodes are updated in stage 6).
+// Returns the power of the rim loads and of the reactions of prescribed motion.
+double rim_update(const Model3d& m, State3d& s, const RimDrive& d) {
+  RimState& rim = s.rim;
+  double fx = 0.0, fz = 0.0, my = 0.0;
+  for (std::size_t k = 0; k < s.rim_nodes.size(); ++k) {
+    const int n = s.rim_nodes[k];
+    const double rx = s.x[n] - rim.x, rz = s.z[n] - rim.z;
+    fx += s.fx[n], fz += s.fz[n];
+    my += rz * s.fx[n] - rx * s.fz[n];
+  }
+  rim.tyre_force_x_N = fx, rim.tyre_force_z_N = fz, rim.tyre_moment_y_Nm = my;
+  rim.rm2_Nm = -my;
+  const double dt = s.dt_s;
+  double power = 0.0;
+  // x: held or prescribed; the reaction does work.
+  const double vx_new = d.hold_x ? 0.0 : d.forward_speed_m_per_s;
+  power += (rim.mass_kg * (vx_new - rim.vx) / dt - fx) * 0.5 * (vx_new + rim.vx);
+  rim.vx = vx_new;
+  // z: free under the wheel load (with the relaxation damping) or held.
+  const double vz_old = rim.vz;
+  if (d.hold_z) {
+    rim.vz = 0.0;
+  } else {
+    const double damping = -s.damping_per_s * rim.mass_kg * rim.vz;
+    rim.vz += dt * (fz - d.wheel_load_N + damping) / rim.mass_kg;
+    s.energy.damping_work_J += damping * 0.5 * (rim.vz + vz_old) * dt;
+  }
+  power += -d.wheel_load_N * 0.5 * (rim.vz + vz_old);
+  // spin about y: prescribed or driven by a torque.
+  const double w_old = rim.omega;
+  if (d.spin_prescribed) {
+    rim.omega = d.angular_velocity_rad_per_s;
+    power += (rim.inertia_kg_m2 * (rim.omega - w_old) / dt - my) * 0.5 * (rim.omega + w_old);
+  } else {
+    rim.omega += dt * (my + d.drive_torque_Nm) / rim.inertia_kg_m2;
+    power += d.drive_torque_Nm * 0.5 * (rim.omega + w_old);
+  }
+  rim.x += dt * rim.vx, rim.z += dt * rim.vz, rim.angle += dt * rim.omega;
+  const double c = std::cos(rim.angle), sn = std::sin(rim.angle);
+  for (std::size_t k = 0; k < s.rim_nodes.size(); ++k) {
+    const int n = s.rim_nodes[k];
+    const double dx = s.rim_offset[2 * k], dz = s.rim_offset[2 * k + 1];
+    const double rx = dx * c + dz * sn, rz = -dx * sn + dz * c;  // R_y(angle) d
+    s.x[n] = rim.x + rx, s.z[n] = rim.z + rz;
+    s.vx[n] = rim.vx + rim.omega * rz, s.vz[n] = rim.vz - rim.omega * rx, s.vy[n] = 0.0;
+  }
+  return power;
+}
+
+}  // namespace
+
+bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
+  const double dt = s.dt_s;
+  const double t0 = s.time_stages ? omp_get_wtime() : 0.0;
+  element_forces(m, s);
+  gather_forces(m, s);
+  const double t1 = s.time_stages ? omp_get_wtime() : 0.0;
+  const double pressure_power = pressure_forces(m, s);
+  const double t2 = s.time_stages ? omp_get_wtime() : 0.0;
+  const double contact_power = road_contact(m, s);
+  const double t3 = s.time_stages ? omp_get_wtime() : 0.0;
+  // Mass-proportional damping on the free nodes (dynamic relaxation).
+  double damping_power = 0.0;
+  for (double p : s.element_viscous_power) damping_power += p;
+  if (s.damping_per_s > 0.0) {
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (m.is_rim_node[i]) continue;
+      const double c = s.damping_per_s * m.node_mass_kg[i];
+      const double gx = -c * s.vx[i], gy = -c * s.vy[i], gz = -c * s.vz[i];
+      s.fx[i] += gx, s.fy[i] += gy, s.fz[i] += gz;
+      damping_power += gx * s.vx[i] + gy * s.vy[i] + gz * s.vz[i];
+    }
+  }
+  const double rim_power = rim_update(m, s, drive);
+  // Stage 6: central difference on the free nodes.
+  double kinetic = 0.0;
+  bool finite = true;
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    if (m.is_rim_node[i]) continue;
+    const double inv_m = 1.0 / m.node_mass_kg[i];
+    const double ux = s.vx[i], uy = s.vy[i], uz = s.vz[i];
+    s.vx[i] += dt * s.fx[i] * inv_m, s.vy[i] += dt * s.fy[i] * inv_m, s.vz[i] += dt * s.fz[i] * inv_m;
+    // kinetic energy at t from the mean of the half-step velocities
+    const double mx = 0.5 * (ux + s.vx[i]), my = 0.5 * (uy + s.vy[i]), mz = 0.5 * (uz + s.vz[i]);
+    kinetic += 0.5 * m.node_mass_kg[i] * (mx * mx + my * my + mz * mz);
+    s.x[i] += dt * s.vx[i], s.y[i] += dt * s.vy[i], s.z[i] += dt * s.vz[i];
+    finite = finite && std::isfinite(s.x[i] + s.y[i] + s.z[i]);
+  }
+  kinetic += 0.5 * s.rim.mass_kg * (s.rim.vx * s.rim.vx + s.rim.vz * s.rim.vz) +
+             0.5 * s.rim.inertia_kg_m2 * s.rim.omega * s.rim.omega;
+  double internal = 0.0, hourglass = 0.0;
+  for (std::size_t e = 0; e < s.element_energy.size(); ++e)
+    internal += s.element_energy[e], hourglass += s.element_hourglass[e];
+  Energies& en = s.energy;
+  if (s.step == 0) en.initial_J = internal + kinetic;
+  en.kinetic_J = kinetic, en.internal_J = internal, en.hourglass_J = hourglass;
+  en.external_work_J += dt * (pressure_power + rim_power);
+  en.contact_work_J += dt * contact_power;
+  en.damping_work_J += dt * damping_power;
+  s.time_s += dt;
+  ++s.step;
+  if (s.time_stages) {
+    const double t4 = omp_get_wtime();
+    s.stage_times.internal_forces_s += t1 - t0;
+    s.stage_times.contact_s += t3 - t2;
+    s.stage_times.rest_s += (t2 - t1) + (t4 - t3);
+  }
+  return finite && std::isfinite(internal);
+}
+
+}  // namespace tyre_fe
