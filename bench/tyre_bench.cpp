@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     std::vector<Eigen::Vector3d> x(model.mesh.nodes.size());
     for (std::size_t i = 0; i < x.size(); ++i) {
       const auto& p = axi.nodes[model.mesh.node_source[i]];
-      const double th = model.mesh.node_angle_rad[i];
+      const double th = model.mesh.node_angle_rad[i] + axi.twist_rad[model.mesh.node_source[i]];
       x[i] = Eigen::Vector3d(p[0] * std::sin(th), p[1], p[0] * std::cos(th));
     }
     State3d start = make_state3d(model, x, t.rim().mass_kg(), t.rim().spin_inertia_kg_m2());

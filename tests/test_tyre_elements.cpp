@@ -660,19 +660,18 @@ TEST(Quad4AxiTwist, TwistHourglassModeIsResisted) {
   }
 }
 
-TEST(Quad4AxiTwist, RevolvedHexagonalWedgeGivesTheSameForces) {
-  // The transfer to 3D: revolve a small quad over dtheta into a hex (the mesh.hpp node
-  // order), carry the twisted state as the lead's 3D code does, node (r, y, phi) at
-  // theta -> (r sin(theta + phi), y, r cos(theta + phi)), and compare with the axisym
-  // element: F rotated into the local (r, y, theta) bases, and the hex nodal forces
-  // summed per quad node as (f.e_r, f_y, r f.e_theta) / dtheta against (f_r, f_y, M).
-  // Affine in-plane map and linear twist field, no hourglass: the two one-point
-  // elements then differ by O((h/R)^2 + dtheta^2) only (h/R = 0.015, dtheta = 1e-3).
+// Revolves a small copy of distorted_quad() (size h ~ 0.015 * size_factor * 10 / R,
+// centre R = 0.1) over dtheta into a hex (the mesh.hpp node order), carries a twisted
+// state into 3D as node (r, y, phi) at theta -> (r sin(theta + phi), y, r cos(theta + phi))
+// and compares the hex with the axisym element: F rotated into the local (r, y, theta)
+// bases, and the hex nodal forces summed per quad node as (f.e_r, f_y, r f.e_theta) /
+// dtheta against (f_r, f_y, M). Returns the relative differences {F, forces, moments}.
+std::array<double, 3> wedge_versus_axisym(double size_factor, double dtheta) {
   Quad X;
   const Quad big = distorted_quad();
   for (int i = 0; i < 4; ++i) {
-    X.x[i][0] = 0.1 + 0.1 * (big.x[i][0] - 0.106);
-    X.x[i][1] = 0.02 + 0.1 * (big.x[i][1] - 0.006);
+    X.x[i][0] = 0.1 + size_factor * (big.x[i][0] - 0.106);
+    X.x[i][1] = 0.02 + size_factor * (big.x[i][1] - 0.006);
   }
   const Quad4AxiReference ref = quad4axi_reference(X.x);
   const Host m = belt_host(20.0);
@@ -691,7 +690,6 @@ TEST(Quad4AxiTwist, RevolvedHexagonalWedgeGivesTheSameForces) {
   twisted_quad_forces(ref, m, x, phi, f, moment, 0.0);
   const Eigen::Matrix3d F_axi = quad4axi_deformation_gradient(ref, x.x, phi);
 
-  const double dtheta = 1e-3;
   const int quad_node[8] = {0, 3, 2, 1, 0, 3, 2, 1};
   auto e_r = [](double th) { return Eigen::Vector3d(std::sin(th), 0.0, std::cos(th)); };
   auto e_theta = [](double th) { return Eigen::Vector3d(std::cos(th), 0.0, -std::sin(th)); };
@@ -705,15 +703,11 @@ TEST(Quad4AxiTwist, RevolvedHexagonalWedgeGivesTheSameForces) {
     for (int d = 0; d < 3; ++d) X3.x[k][d] = P[d], x3.x[k][d] = p[d];
   }
   const Hex8Reference ref3 = hex8_reference(X3.x);
-  EXPECT_NEAR(ref3.volume_m3 / dtheta, ref.volume_per_rad_m3, 1e-3 * ref.volume_per_rad_m3);
   const Eigen::Matrix3d F3 = hex8_deformation_gradient(ref3, x3.x);
   Eigen::Matrix3d Q_ref, Q_cur;  // columns e_r, e_y, e_theta at the wedge's centre
   Q_ref << e_r(0.0), Eigen::Vector3d::UnitY(), e_theta(0.0);
   Q_cur << e_r(phi_c), Eigen::Vector3d::UnitY(), e_theta(phi_c);
   const Eigen::Matrix3d F_local = Q_cur.transpose() * F3 * Q_ref;
-  std::printf("  |F_hex - F_axi| = %.2e (|F_axi - I| = %.3f)\n", (F_local - F_axi).norm(),
-              (F_axi - Eigen::Matrix3d::Identity()).norm());
-  EXPECT_LE((F_local - F_axi).norm(), 1e-3 * (F_axi - Eigen::Matrix3d::Identity()).norm());
 
   double W = 0.0, f3[8][3];
   const Eigen::Matrix3d tau3 = host_stress(m, F3, Q_ref * m.a0, &W);
@@ -726,16 +720,32 @@ TEST(Quad4AxiTwist, RevolvedHexagonalWedgeGivesTheSameForces) {
     from_hex[i][1] += fk[1] / dtheta;
     from_hex[i][2] += x.x[i][0] * fk.dot(e_theta(angle[k] + phi[i])) / dtheta;
   }
-  double scale = 0.0, error = 0.0;
+  double scale = 0.0, force_error = 0.0, moment_error = 0.0;
   for (int i = 0; i < 4; ++i) {
     scale += std::hypot(f[i][0], f[i][1]) + std::abs(moment[i]) / ref.radius_m;
-    error += std::hypot(from_hex[i][0] - f[i][0], from_hex[i][1] - f[i][1]) +
-             std::abs(from_hex[i][2] - moment[i]) / ref.radius_m;
+    force_error += std::hypot(from_hex[i][0] - f[i][0], from_hex[i][1] - f[i][1]);
+    moment_error += std::abs(from_hex[i][2] - moment[i]) / ref.radius_m;
+    EXPECT_GT(from_hex[i][2] * moment[i], 0.0) << "node " << i;  // same sense of the moments
   }
-  std::printf("  revolved hex vs axisym generalised forces: relative difference %.2e\n", error / scale);
-  EXPECT_LE(error, 2e-3 * scale);
-  for (int i = 0; i < 4; ++i)  // the moments carry a real share and agree in sign
-    EXPECT_GT(from_hex[i][2] * moment[i], 0.0) << "node " << i;
+  return {(F_local - F_axi).norm() / (F_axi - Eigen::Matrix3d::Identity()).norm(), force_error / scale,
+          moment_error / scale};
+}
+
+TEST(Quad4AxiTwist, RevolvedHexWedgeConvergesToTheAxisymElement) {
+  // The transfer to 3D (affine in-plane map, linear twist field, no hourglass). The
+  // two one-point elements are different discretisations: the hex integrates the
+  // weight R over the section exactly, the axisym element takes V = A R_c with R_c the
+  // mean node radius and N_i = 1/4 in the hoop terms, which differ by O(h/R) on a
+  // distorted quad. The differences must vanish linearly as h/R -> 0 (a wrong sense of
+  // phi, a missing coupling term or a wrong factor would leave O(1) differences).
+  const auto coarse = wedge_versus_axisym(0.1, 1e-3);  // h/R ~ 0.015
+  const auto fine = wedge_versus_axisym(0.05, 1e-3);   // h/R ~ 0.0075
+  std::printf("  hex wedge vs axisym, h/R 0.015 -> 0.0075: F %.2e -> %.2e, forces %.2e -> %.2e, "
+              "moments %.2e -> %.2e\n", coarse[0], fine[0], coarse[1], fine[1], coarse[2], fine[2]);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LE(coarse[k], 3e-3);
+    EXPECT_LE(fine[k], 0.55 * coarse[k]);
+  }
 }
 
 // Largest eigenvalue of M^-1 K of the axisymmetric quad with twist in the coordinates

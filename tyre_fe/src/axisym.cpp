@@ -1,8 +1,9 @@
 // Axisymmetric dynamic relaxation (see axisym.hpp).
 //
 // Damping: kinetic damping (Cundall 1976; Barnes 1999, Int. J. Space Structures
-// 14:89-104). The motion is undamped, and whenever the total kinetic energy falls (a peak has just been passed,
-// the structure is near a minimum of the potential energy along its path) every
+// 14:89-104). The motion is undamped, and whenever the total kinetic energy (twist
+// included) falls (a peak has just been passed, the structure is near a minimum of
+// the potential energy along its path) every
 // velocity is set to zero and the motion restarts from rest. It needs no estimate of
 // the lowest frequency. Measured against mass-proportional damping set each step to
 // critical damping of the lowest mode from the secant Rayleigh quotient
@@ -12,7 +13,8 @@
 //   same with mass_scaling_time_step_s = 1e-6:               78 213 vs  90 512 steps
 //   rubber-only torus, 120 quads, 5 kPa (soft, large u):     29 474 vs 135 863 steps
 // The Rayleigh quotient of the current displacement overestimates omega_1 (the static
-// shape is not a pure mode), which over-damps the slowest mode.
+// shape is not a pure mode), which over-damps the slowest mode. (These counts predate
+// the twist dof; with it the 235/75R15 section takes 127 461 steps, the same step.)
 #include "tyre_fe/axisym.hpp"
 
 #include <algorithm>
@@ -48,15 +50,18 @@ struct QuadState {
   double hourglass_energy;
 };
 
-// Dofs of node n: 3 n (u_r), 3 n + 1 (u_y), 3 n + 2 (phi).
+// Dofs of node n: 3 n (r), 3 n + 1 (y), 3 n + 2 (phi). The state is the flat array
+// of current values (r, y, phi) per node.
 constexpr int kDofsPerNode = 3;
 
 struct Model {
   std::vector<QuadData> quads;
-  std::vector<double> node_mass;     // kg per radian
-  std::vector<double> node_inertia;  // m R^2 [kg m^2 per radian], for the twist
-  std::vector<double> node_radius;   // reference R [m]
-  std::vector<char> fixed;           // per dof (r, y, phi) of each node
+  // Per dof, so that the step loops need no branches: the mass (m, m, m R^2 for the
+  // twist), its inverse (0 on held dofs, which therefore never move) and the weight
+  // of the squared residual (1, 1, 1 / R^2: the moment as a hoop force; 0 if held).
+  std::vector<double> mass;
+  std::vector<double> inverse_mass;
+  std::vector<double> residual_weight;
   double time_step_s = 0.0;
   double ramp_time_s = 0.0;
 };
@@ -72,8 +77,8 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
   const std::size_t n_nodes = s.nodes.size();
   if (s.quad_region.size() != s.quads.size()) fail("quad_region size differs from quads");
   Model model;
-  model.node_mass.assign(n_nodes, 0.0);
-  model.fixed.assign(kDofsPerNode * n_nodes, 0);
+  std::vector<double> node_mass(n_nodes, 0.0);  // kg per radian
+  std::vector<char> fixed(kDofsPerNode * n_nodes, 0);
   model.quads.reserve(s.quads.size());
   double min_step = HUGE_VAL, min_shear_speed = HUGE_VAL;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(HUGE_VAL), hi = -lo;
@@ -125,35 +130,43 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
     }
     min_step = std::min(min_step, step);
     min_shear_speed = std::min(min_shear_speed, std::sqrt(d.shear_modulus_Pa / density));
-    for (int i = 0; i < 4; ++i) model.node_mass[d.nodes[i]] += 0.25 * density * d.ref.volume_per_rad_m3;
+    for (int i = 0; i < 4; ++i) node_mass[d.nodes[i]] += 0.25 * density * d.ref.volume_per_rad_m3;
     model.quads.push_back(d);
   }
   if (model.quads.empty()) fail("the cross-section has no quads");
-  model.node_inertia.resize(n_nodes);
-  model.node_radius.resize(n_nodes);
   for (std::size_t i = 0; i < n_nodes; ++i) {
-    if (!(model.node_mass[i] > 0.0)) fail("node " + std::to_string(i) + " belongs to no quad");
-    model.node_radius[i] = s.nodes[i][0];
-    model.node_inertia[i] = model.node_mass[i] * s.nodes[i][0] * s.nodes[i][0];
+    if (!(node_mass[i] > 0.0)) fail("node " + std::to_string(i) + " belongs to no quad");
     // On the axis the twist is meaningless (no hoop displacement) and has no inertia.
-    if (!(s.nodes[i][0] > 0.0)) model.fixed[kDofsPerNode * i + 2] = 1;
+    if (!(s.nodes[i][0] > 0.0)) fixed[kDofsPerNode * i + 2] = 1;
   }
   for (const auto& e : s.inner_liner_edges)
     if (e[0] < 0 || static_cast<std::size_t>(e[0]) >= s.quads.size() || e[1] < 0 || e[1] > 3)
       fail("inner_liner_edges has an invalid (quad, edge) pair");
 
-  const std::vector<int>& fixed = load.fixed_nodes ? *load.fixed_nodes : s.rim_nodes;
-  for (int node : fixed) {
+  const std::vector<int>& fixed_nodes = load.fixed_nodes ? *load.fixed_nodes : s.rim_nodes;
+  for (int node : fixed_nodes) {
     check_node(node, n_nodes, "fixed_nodes");
-    for (int c = 0; c < kDofsPerNode; ++c) model.fixed[kDofsPerNode * node + c] = 1;
+    for (int c = 0; c < kDofsPerNode; ++c) fixed[kDofsPerNode * node + c] = 1;
   }
   for (int node : load.fixed_y_nodes) {
     check_node(node, n_nodes, "fixed_y_nodes");
-    model.fixed[kDofsPerNode * node + 1] = 1;
+    fixed[kDofsPerNode * node + 1] = 1;
   }
   for (int node : load.fixed_twist_nodes) {
     check_node(node, n_nodes, "fixed_twist_nodes");
-    model.fixed[kDofsPerNode * node + 2] = 1;
+    fixed[kDofsPerNode * node + 2] = 1;
+  }
+  model.mass.resize(kDofsPerNode * n_nodes);
+  model.inverse_mass.resize(kDofsPerNode * n_nodes);
+  model.residual_weight.resize(kDofsPerNode * n_nodes);
+  for (std::size_t i = 0; i < n_nodes; ++i) {
+    const double R = s.nodes[i][0];
+    for (int c = 0; c < kDofsPerNode; ++c) {
+      const std::size_t k = kDofsPerNode * i + c;
+      model.mass[k] = c < 2 ? node_mass[i] : node_mass[i] * R * R;
+      model.inverse_mass[k] = fixed[k] ? 0.0 : 1.0 / model.mass[k];
+      model.residual_weight[k] = fixed[k] ? 0.0 : c < 2 ? 1.0 : 1.0 / (R * R);
+    }
   }
   model.time_step_s = kSafetyFactor * min_step;
   model.ramp_time_s = load.ramp_time_s > 0.0
@@ -162,16 +175,16 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
   return model;
 }
 
-// Internal forces, moments, energies and (optionally) stresses of one quad at
-// positions x and twist angles phi.
-void evaluate_quad(const QuadData& d, const std::vector<Eigen::Vector2d>& x,
-                   const std::vector<double>& phi, double hourglass_coefficient, QuadState& out,
-                   Eigen::Matrix3d* cauchy = nullptr, double* log_strain = nullptr) {
+// Internal forces, moments, energies and (optionally) stresses of one quad at the
+// state q (r, y, phi per node).
+void evaluate_quad(const QuadData& d, const std::vector<double>& q, double hourglass_coefficient,
+                   QuadState& out, Eigen::Matrix3d* cauchy = nullptr, double* log_strain = nullptr) {
   double xe[4][2], twist[4];
   for (int i = 0; i < 4; ++i) {
-    xe[i][0] = x[d.nodes[i]][0];
-    xe[i][1] = x[d.nodes[i]][1];
-    twist[i] = phi[d.nodes[i]];
+    const double* node = &q[kDofsPerNode * d.nodes[i]];
+    xe[i][0] = node[0];
+    xe[i][1] = node[1];
+    twist[i] = node[2];
   }
   const Eigen::Matrix3d F = quad4axi_deformation_gradient(d.ref, xe, twist);
   double energy = 0.0;
@@ -196,13 +209,15 @@ void evaluate_quad(const QuadData& d, const std::vector<Eigen::Vector2d>& x,
 // x = r e_r(Theta + phi) + y e_y on the surface, dx/ds = r' e_r + y' e_y + r phi' e_theta
 // and dx/dTheta = r e_theta, so the area vector dx/ds x dx/dTheta has no theta component
 // and does not depend on phi.
-void add_pressure(const CrossSection& s, const std::vector<Eigen::Vector2d>& x, double p,
+void add_pressure(const CrossSection& s, const std::vector<double>& q, double p,
                   std::vector<double>& f_ext) {
   for (const auto& e : s.inner_liner_edges) {
     const auto& quad = s.quads[e[0]];
     const int a = quad[e[1]], b = quad[(e[1] + 1) % 4];
-    const double dr = x[b][0] - x[a][0], dy = x[b][1] - x[a][1];
-    const double wa = x[a][0] / 3.0 + x[b][0] / 6.0, wb = x[a][0] / 6.0 + x[b][0] / 3.0;
+    const double ra = q[kDofsPerNode * a], ya = q[kDofsPerNode * a + 1];
+    const double rb = q[kDofsPerNode * b], yb = q[kDofsPerNode * b + 1];
+    const double dr = rb - ra, dy = yb - ya;
+    const double wa = ra / 3.0 + rb / 6.0, wb = ra / 6.0 + rb / 3.0;
     f_ext[kDofsPerNode * a] -= p * dy * wa;
     f_ext[kDofsPerNode * a + 1] += p * dr * wa;
     f_ext[kDofsPerNode * b] -= p * dy * wb;
@@ -221,8 +236,12 @@ AxisymResult solve_axisym(const CrossSection& section, const TyreMaterials& mate
   const double dt = model.time_step_s;
   const double hg = materials.hourglass_coefficient;
 
-  std::vector<Eigen::Vector2d> x = section.nodes;
-  std::vector<double> phi(n_nodes, 0.0);
+  std::vector<double> q0(n_dofs, 0.0);  // reference state (R, Y, 0)
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    q0[kDofsPerNode * n] = section.nodes[n][0];
+    q0[kDofsPerNode * n + 1] = section.nodes[n][1];
+  }
+  std::vector<double> q = q0;
   // v: velocities (r, y) and twist rates [rad/s] at half steps; f_int holds the
   // moments M_i on the twist dofs.
   std::vector<double> v(n_dofs, 0.0), f_int(n_dofs), f_ext(n_dofs);
@@ -239,41 +258,32 @@ AxisymResult solve_axisym(const CrossSection& section, const TyreMaterials& mate
     // Serial on purpose: a cross-section has ~1e2-1e3 quads (~0.1 us each), less work
     // per step than an OpenMP fork/join costs (measured 8x slower on 2 threads with
     // 120 quads). The result is therefore independent of the thread count.
-    for (std::size_t q = 0; q < model.quads.size(); ++q)
-      evaluate_quad(model.quads[q], x, phi, hg, states[q]);
+    for (std::size_t e = 0; e < model.quads.size(); ++e) evaluate_quad(model.quads[e], q, hg, states[e]);
     std::fill(f_int.begin(), f_int.end(), 0.0);
     std::fill(f_ext.begin(), f_ext.end(), 0.0);
     double strain_energy = 0.0, hourglass_energy = 0.0;
-    for (std::size_t q = 0; q < model.quads.size(); ++q) {
-      const auto& nodes = model.quads[q].nodes;
+    for (std::size_t e = 0; e < model.quads.size(); ++e) {
+      const auto& nodes = model.quads[e].nodes;
       for (int i = 0; i < 4; ++i) {
         double* fn = &f_int[kDofsPerNode * nodes[i]];
-        fn[0] += states[q].f[i][0];
-        fn[1] += states[q].f[i][1];
-        fn[2] += states[q].moment[i];
+        fn[0] += states[e].f[i][0];
+        fn[1] += states[e].f[i][1];
+        fn[2] += states[e].moment[i];
       }
-      strain_energy += states[q].strain_energy;
-      hourglass_energy += states[q].hourglass_energy;
+      strain_energy += states[e].strain_energy;
+      hourglass_energy += states[e].hourglass_energy;
     }
-    add_pressure(section, x, load.pressure_Pa * load_factor, f_ext);
+    add_pressure(section, q, load.pressure_Pa * load_factor, f_ext);
 
     // Twist dofs as hoop displacements R phi: force M / R, mass m (see axisym.hpp).
+    // Held dofs never move (u = 0, v = 0) and have weight 0.
     double residual_sq = 0.0, load_sq = 0.0, work = 0.0, kinetic = 0.0;
-    for (std::size_t n = 0; n < n_nodes; ++n) {
-      const std::size_t k = kDofsPerNode * n;
-      load_sq += f_ext[k] * f_ext[k] + f_ext[k + 1] * f_ext[k + 1];
-      for (int c = 0; c < 2; ++c) {
-        if (model.fixed[k + c]) continue;
-        const double r = f_ext[k + c] - f_int[k + c];
-        residual_sq += r * r;
-        work += f_ext[k + c] * (x[n][c] - section.nodes[n][c]);
-        kinetic += 0.5 * model.node_mass[n] * v[k + c] * v[k + c];
-      }
-      if (!model.fixed[k + 2]) {
-        const double hoop_force = f_int[k + 2] / model.node_radius[n];
-        residual_sq += hoop_force * hoop_force;
-        kinetic += 0.5 * model.node_inertia[n] * v[k + 2] * v[k + 2];
-      }
+    for (std::size_t k = 0; k < n_dofs; ++k) {
+      const double r = f_ext[k] - f_int[k];
+      load_sq += f_ext[k] * f_ext[k];
+      residual_sq += model.residual_weight[k] * r * r;
+      work += f_ext[k] * (q[k] - q0[k]);
+      kinetic += 0.5 * model.mass[k] * v[k] * v[k];
     }
     if (!std::isfinite(residual_sq) || !std::isfinite(strain_energy))
       fail("diverged at step " + std::to_string(step) + " (inverted element or unstable step)");
@@ -302,28 +312,24 @@ AxisymResult solve_axisym(const CrossSection& section, const TyreMaterials& mate
     } else {
       previous_kinetic = kinetic;
     }
-    for (std::size_t n = 0; n < n_nodes; ++n) {  // central difference, v at half steps
-      const std::size_t k = kDofsPerNode * n;
-      for (int c = 0; c < 2; ++c) {
-        if (model.fixed[k + c]) continue;
-        v[k + c] += dt * (f_ext[k + c] - f_int[k + c]) / model.node_mass[n];
-        x[n][c] += dt * v[k + c];
-      }
-      if (!model.fixed[k + 2]) {
-        v[k + 2] -= dt * f_int[k + 2] / model.node_inertia[n];
-        phi[n] += dt * v[k + 2];
-      }
+    for (std::size_t k = 0; k < n_dofs; ++k) {  // central difference, v at half steps
+      v[k] += dt * (f_ext[k] - f_int[k]) * model.inverse_mass[k];
+      q[k] += dt * v[k];
     }
   }
 
-  result.nodes = x;
-  result.twist_rad = phi;
+  result.nodes.resize(n_nodes);
+  result.twist_rad.resize(n_nodes);
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    result.nodes[n] = Eigen::Vector2d(q[kDofsPerNode * n], q[kDofsPerNode * n + 1]);
+    result.twist_rad[n] = q[kDofsPerNode * n + 2];
+  }
   result.quad_stress_Pa.resize(model.quads.size());
   result.quad_rebar_log_strain.resize(model.quads.size());
-  for (std::size_t q = 0; q < model.quads.size(); ++q) {
+  for (std::size_t e = 0; e < model.quads.size(); ++e) {
     QuadState state;
-    evaluate_quad(model.quads[q], x, phi, hg, state, &result.quad_stress_Pa[q],
-                  &result.quad_rebar_log_strain[q]);
+    evaluate_quad(model.quads[e], q, hg, state, &result.quad_stress_Pa[e],
+                  &result.quad_rebar_log_strain[e]);
   }
   return result;
 }

@@ -301,14 +301,10 @@ double quad4axi_internal_forces(const Quad4AxiReference& ref, const double x[4][
   const double Gc0 = G00 * F(2, 0) + G01 * F(2, 1), Gc1 = G10 * F(2, 0) + G11 * F(2, 1);
   const double P22 = V * (tau(2, 2) - tau(2, 0) * Gc0 - tau(2, 1) * Gc1) / F(2, 2);  // V P_thth
 
-  double r_centroid = 0.0, twist_R = 0.0, twist_Y = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    r_centroid += 0.25 * x[i][0];
-    twist_R += twist_rad[i] * ref.dNdX[i][0];
-    twist_Y += twist_rad[i] * ref.dNdX[i][1];
-  }
+  // r_c = R_c F_thth and r_c grad(phi) = (F_thR, F_thY), F being consistent with (x, phi).
+  const double r_centroid = ref.radius_m * F(2, 2);
   // d(F_thR, F_thY, F_thth) / d r_i = (dphi/dR, dphi/dY, 1 / R_c) / 4.
-  const double hoop = 0.25 * (P20 * twist_R + P21 * twist_Y + P22 / ref.radius_m);
+  const double hoop = 0.25 * ((P20 * F(2, 0) + P21 * F(2, 1)) / r_centroid + P22 / ref.radius_m);
 
   const double k_hg =
       hourglass_coefficient * shear_modulus_Pa * V * ref.gradient_sq_sum_per_m2;

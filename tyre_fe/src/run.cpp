@@ -22,11 +22,13 @@ namespace {
 // node_source[i] of the section at angle node_angle_rad[i] (Abaqus *SYMMETRIC
 // MODEL GENERATION + *SYMMETRIC RESULTS TRANSFER). The elements are total
 // Lagrangian, so positions carry the stresses and rebar forces with them.
-std::vector<Eigen::Vector3d> revolve_positions(const Mesh3D& mesh, const std::vector<Eigen::Vector2d>& section) {
+// The twist of the cross-section node (CGAX-type twist dof) turns it about the axis.
+std::vector<Eigen::Vector3d> revolve_positions(const Mesh3D& mesh, const std::vector<Eigen::Vector2d>& section,
+                                               const std::vector<double>& twist_rad) {
   std::vector<Eigen::Vector3d> x(mesh.nodes.size());
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Eigen::Vector2d& p = section[mesh.node_source[i]];
-    const double th = mesh.node_angle_rad[i];
+    const double th = mesh.node_angle_rad[i] + (twist_rad.empty() ? 0.0 : twist_rad[mesh.node_source[i]]);
     x[i] = Eigen::Vector3d(p[0] * std::sin(th), p[1], p[0] * std::cos(th));
   }
   return x;
@@ -153,7 +155,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
                            std::to_string(model.stable_dt_s) + " s");
       dt = scene.time().fixed_dt_s();
     }
-    State3d s = make_state3d(model, revolve_positions(model.mesh, axi.nodes), t.rim().mass_kg(),
+    State3d s = make_state3d(model, revolve_positions(model.mesh, axi.nodes, axi.twist_rad), t.rim().mass_kg(),
                              t.rim().spin_inertia_kg_m2());
     s.dt_s = dt;
     s.pressure_Pa = t.inflation_pressure_pa();
@@ -263,6 +265,9 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       const auto& rim = t.rim();
       const double window = st.average_last_s() > 0 ? st.average_last_s() : 0.5 * st.rolling_s();
       const double t_start = s.time_s, t_window = t_start + st.rolling_s() - window;
+      // Effective rolling radius estimate R - deflection / 3 (a common estimate; Pacejka, Tire and Vehicle Dynamics, 2006).
+      const double unloaded = results.value("unloaded_radius_m", free_radius(model, s));
+      const double spin_up_radius = unloaded - (unloaded - (s.rim.z - s.road.height_m)) / 3.0;
       double x_w = 0, a_w = 0, fx_sum = 0, m_sum = 0, fz_sum = 0;
       long n_w = 0;
       bool in_window = false;
@@ -273,9 +278,14 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
         d.wheel_load_N = rim.wheel_load_n();
         if (rim.spin_case() == sc::RimSpec::kAngularVelocityRadPerS) {
           d.angular_velocity_rad_per_s = rim.angular_velocity_rad_per_s() * smooth_ramp(tau, rim.speed_ramp_time_s());
+        } else if (tau < rim.speed_ramp_time_s()) {
+          // Spin-up: while the speed ramps the spin follows it at the estimated free
+          // rolling radius, so that the tyre starts rolling instead of sliding; then the
+          // spin is released (free rolling) and the torque ramps in.
+          d.angular_velocity_rad_per_s = d.forward_speed_m_per_s / spin_up_radius;
         } else {
           d.spin_prescribed = false;
-          d.drive_torque_Nm = rim.drive_torque_nm() * smooth_ramp(tau, rim.torque_ramp_time_s());
+          d.drive_torque_Nm = rim.drive_torque_nm() * smooth_ramp(tau - rim.speed_ramp_time_s(), rim.torque_ramp_time_s());
         }
         return d;
       }, [&] {

@@ -118,7 +118,8 @@ Eigen::Matrix3d quad4axi_deformation_gradient(const Quad4AxiReference& ref, cons
 // (uniform phi) and a uniform twist gradient give no hourglass force, and a uniform
 // phi gives F and hence forces unchanged (sum_i dN_i/dX = 0). The twist hourglass
 // uses the reference R_c so that it stays quadratic in phi and does not couple to r.
-// Writes f and moment. Returns the hourglass energy.
+// F must be quad4axi_deformation_gradient(ref, x, twist_rad) (r_c and grad phi are
+// read from it). Writes f and moment. Returns the hourglass energy.
 double quad4axi_internal_forces(const Quad4AxiReference& ref, const double x[4][2],
                                 const double twist_rad[4], const Eigen::Matrix3d& F,
                                 const Eigen::Matrix3d& tau, double hourglass_coefficient,
