@@ -7,6 +7,7 @@
 
 #include "cosim/error.hpp"
 #include "test_support.hpp"
+#include "tyre_fe/scene.hpp"
 
 namespace {
 
@@ -47,6 +48,7 @@ std::string error_of(const std::string& path, const std::vector<std::string>& se
     const auto scene = cosim::load_scene(path, sets);
     cosim::ValidationReport report;
     snow_sph::validate_sph_scene(*scene, report);
+    tyre_fe::validate_tyre_scene(*scene, report);
     report.throw_if_failed();
     return "";
   } catch (const cosim::Error& e) {
@@ -143,4 +145,37 @@ TEST(SceneValidation, AllProblemsAreReportedAtOnce) {
   EXPECT_NE(e.find("end_time_s"), std::string::npos) << e;
   EXPECT_NE(e.find("particle_spacing_m"), std::string::npos) << e;
 }
+}  // namespace
+
+namespace {
+
+std::string tyre_scene() { return test_support::source_dir() + "/configs/scenes/tyre_inflation.textproto"; }
+
+TEST(TyreSceneValidation, BadSizeAndNegativePressureNameTheField) {
+  const std::string e = error_of(tyre_scene(), {"tyre.size=235-75R15", "tyre.inflation_pressure_Pa=-1"});
+  EXPECT_NE(e.find("tyre.size"), std::string::npos) << e;
+  EXPECT_NE(e.find("--set tyre.inflation_pressure_Pa=-1: must be >= 0"), std::string::npos) << e;
+}
+
+TEST(TyreSceneValidation, UnknownRegionInMaterialsFileNamesFileAndLine) {
+  const std::string dir = test_support::scratch("validation_tyre_materials");
+  std::ifstream in(test_support::source_dir() + "/configs/materials/tyre_235_75R15.textproto");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = replace(text, "region: \"tread\"", "region: \"treed\"");
+  std::ofstream(dir + "/materials.textproto") << text;
+  const std::string e = error_of(tyre_scene(), {"tyre.materials_file=" + dir + "/materials.textproto"});
+  EXPECT_NE(e.find(dir + "/materials.textproto:"), std::string::npos) << e;
+  EXPECT_NE(e.find("treed"), std::string::npos) << e;
+  EXPECT_NE(e.find("no material for region 'tread'"), std::string::npos) << e;
+}
+
+TEST(TyreSceneValidation, ImpossibleMaterialValuesAreRefused) {
+  const std::string e = error_of(tyre_scene(), {"tyre.materials[0].region=bead",
+                                                "tyre.materials[0].elastic.density_kg_per_m3=7570",
+                                                "tyre.materials[0].elastic.youngs_modulus_Pa=206e9",
+                                                "tyre.materials[0].elastic.poisson_ratio=0.5"});
+  EXPECT_NE(e.find("poisson_ratio"), std::string::npos) << e;
+  EXPECT_NE(e.find("must be in [0, 0.5)"), std::string::npos) << e;
+}
+
 }  // namespace

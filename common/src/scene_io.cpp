@@ -263,8 +263,9 @@ std::unique_ptr<LoadedScene> load_scene(const std::string& path,
     loaded->overrides[o.substr(0, eq)] = o.substr(eq + 1);
   }
   // Resolve material files: the file gives the base, fields set inline win.
-  auto* sph = loaded->message.mutable_sph();
-  for (int b = 0; b < sph->blocks_size(); ++b) {
+  // (mutable_sph() would create an empty terrain in a tyre-only scene.)
+  auto* sph = loaded->message.has_sph() ? loaded->message.mutable_sph() : nullptr;
+  for (int b = 0; sph && b < sph->blocks_size(); ++b) {
     auto* material = sph->mutable_blocks(b)->mutable_material();
     if (material->material_file().empty()) continue;
     const std::string& ref = material->material_file();
