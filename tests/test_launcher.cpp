@@ -45,6 +45,30 @@ TEST(Launcher, RunStartsOnlyTheTerrainSolver) {
   EXPECT_EQ(summary["overrides"]["time.end_time_s"], "0.005");
 }
 
+// A tyre on the rigid road starts tyre_fe alone; --mesh-only writes the four tread
+// variants' meshes with their counts (issue: tyre_fe, item 4).
+TEST(Launcher, TyreSceneStartsOnlyTheTyreSolverAndWritesEachTreadVariant) {
+  long previous_sipe_walls = -1;
+  for (const char* variant : {"SMOOTH", "RIB", "BLOCK", "BLOCK_SIPES"}) {
+    const auto dir = test_support::scratch(std::string("launcher_tyre_") + variant);
+    auto [code, out] = shell(bin() + "/cosim run " + test_support::scene_path("tyre_tread_variants") + " --out " +
+                             dir + " --mesh-only --set tyre.tread.variant=" + variant);
+    ASSERT_EQ(code, 0) << out;
+    EXPECT_NE(out.find("needs: tyre_fe alone (tyre on a rigid road: no SPH, no DDS)"), std::string::npos) << out;
+    const auto summary = nlohmann::json::parse(std::ifstream(dir + "/summary.json"));
+    const auto& r = summary["results"];
+    EXPECT_GT(r["elements"].get<long>(), 0);
+    EXPECT_GT(r["facets_by_tag"]["tread_top"].get<long>(), 0);
+    const long grooves = r["facets_by_tag"]["groove_wall"].get<long>();
+    const long sipes = r["facets_by_tag"]["sipe_wall"].get<long>();
+    EXPECT_EQ(grooves > 0, std::string(variant) != "SMOOTH") << variant;
+    EXPECT_EQ(sipes > 0, std::string(variant) == "BLOCK_SIPES") << variant;
+    EXPECT_GT(std::filesystem::file_size(dir + "/mesh3d.vtk"), 1000u);
+    previous_sipe_walls = sipes;
+  }
+  EXPECT_GT(previous_sipe_walls, 0);
+}
+
 TEST(Launcher, StudyWritesTableAndPlot) {
   const auto dir = test_support::scratch("launcher_study");
   auto [code, out] = shell(bin() + "/cosim study " + test_support::source_dir() +
