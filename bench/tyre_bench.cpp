@@ -41,12 +41,7 @@ int main(int argc, char** argv) {
     Model3dOptions options;
     options.mass_scaling_target_dt_s = t.mass_scaling_target_dt_s();
     const Model3d model = build_model3d(revolve(section, setup.pattern), setup.materials, section, options);
-    std::vector<Eigen::Vector3d> x(model.mesh.nodes.size());
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      const auto& p = axi.nodes[model.mesh.node_source[i]];
-      const double th = model.mesh.node_angle_rad[i] + axi.twist_rad[model.mesh.node_source[i]];
-      x[i] = Eigen::Vector3d(p[0] * std::sin(th), p[1], p[0] * std::cos(th));
-    }
+    const auto x = revolve_positions(model.mesh, axi.nodes, axi.twist_rad);
     State3d start = make_state3d(model, x, t.rim().mass_kg(), t.rim().spin_inertia_kg_m2());
     start.pressure_Pa = t.inflation_pressure_pa();
     place_road(model, start, -0.01, 0.3, 0.1);  // 10 mm into the road: contact is active

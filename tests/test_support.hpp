@@ -8,25 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/scene_io.hpp"
+#include "test_paths.hpp"
 #include "snow_sph/run.hpp"
 #include "snow_sph/scene.hpp"
 
 namespace test_support {
-
-inline std::string source_dir() {
-  const char* s = std::getenv("COSIM_SOURCE_DIR");
-  return s ? s : ".";
-}
-inline std::string data_dir() { return source_dir() + "/tests/data"; }
-inline std::string scene_path(const std::string& name) {
-  return source_dir() + "/configs/scenes/" + name + ".textproto";
-}
-inline std::string scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("cosim_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
 
 // Loads, validates and runs a scene with overrides; returns summary.json.
 inline nlohmann::json run(const std::string& scene_file, const std::vector<std::string>& sets,

@@ -292,4 +292,15 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
   return m;
 }
 
+std::vector<Eigen::Vector3d> revolve_positions(const Mesh3D& mesh, const std::vector<Eigen::Vector2d>& section,
+                                               const std::vector<double>& twist_rad) {
+  std::vector<Eigen::Vector3d> x(mesh.nodes.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Eigen::Vector2d& p = section[mesh.node_source[i]];
+    const double th = mesh.node_angle_rad[i] + (twist_rad.empty() ? 0.0 : twist_rad[mesh.node_source[i]]);
+    x[i] = Eigen::Vector3d(p[0] * std::sin(th), p[1], p[0] * std::cos(th));
+  }
+  return x;
+}
+
 }  // namespace tyre_fe

@@ -18,22 +18,6 @@ namespace tyre_fe {
 namespace sc = cosim::scene;
 namespace {
 
-// The inflated cross-section carried into 3D: node i of the 3D mesh is node
-// node_source[i] of the section at angle node_angle_rad[i] (Abaqus *SYMMETRIC
-// MODEL GENERATION + *SYMMETRIC RESULTS TRANSFER). The elements are total
-// Lagrangian, so positions carry the stresses and rebar forces with them.
-// The twist of the cross-section node (CGAX-type twist dof) turns it about the axis.
-std::vector<Eigen::Vector3d> revolve_positions(const Mesh3D& mesh, const std::vector<Eigen::Vector2d>& section,
-                                               const std::vector<double>& twist_rad) {
-  std::vector<Eigen::Vector3d> x(mesh.nodes.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const Eigen::Vector2d& p = section[mesh.node_source[i]];
-    const double th = mesh.node_angle_rad[i] + (twist_rad.empty() ? 0.0 : twist_rad[mesh.node_source[i]]);
-    x[i] = Eigen::Vector3d(p[0] * std::sin(th), p[1], p[0] * std::cos(th));
-  }
-  return x;
-}
-
 // Mean radial position of every 3D copy of a cross-section node.
 double mean_radius_of(const Mesh3D& mesh, const State3d& s, int section_node) {
   double sum = 0.0;

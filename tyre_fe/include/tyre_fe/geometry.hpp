@@ -76,4 +76,12 @@ void write_abaqus_cross_section(const CrossSection& section, const std::string& 
 // tread elements, sipes split nodes, facets are tagged.
 Mesh3D revolve(const CrossSection& section, const TreadPattern& pattern);
 
+// A (deformed) cross-section state carried into 3D: node i of the mesh is node
+// node_source[i] of the section at angle node_angle_rad[i], turned about the axis by
+// that section node's twist (empty: none). This is Abaqus's *SYMMETRIC MODEL
+// GENERATION + *SYMMETRIC RESULTS TRANSFER: the elements are total Lagrangian, so
+// positions carry the stresses and rebar forces with them.
+std::vector<Eigen::Vector3d> revolve_positions(const Mesh3D& mesh, const std::vector<Eigen::Vector2d>& section,
+                                               const std::vector<double>& twist_rad);
+
 }  // namespace tyre_fe
