@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # One set-up step: installs the Debian 12 packages the project needs (when
-# missing; needs root or sudo) and builds everything into build/ (Release).
+# missing; needs root or sudo), among them both DDS vendors (Cyclone DDS 0.10,
+# Fast DDS 2.9 with fastddsgen), and builds everything into build/ (Release).
 # Safe to run again: it only installs what is missing and rebuilds what changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,7 +9,8 @@ cd "$(dirname "$0")/.."
 PACKAGES=(cmake g++ make git pkg-config
   libeigen3-dev libprotobuf-dev protobuf-compiler
   libgtest-dev libgmock-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev gnuplot-nox)
+  nlohmann-json3-dev libcli11-dev gnuplot-nox
+  cyclonedds-dev cyclonedds-tools libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

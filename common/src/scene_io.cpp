@@ -9,6 +9,7 @@
 #include <google/protobuf/io/tokenizer.h>
 
 #include "cosim/error.hpp"
+#include "cosim/strings.hpp"
 
 namespace cosim {
 namespace pb = google::protobuf;
@@ -27,21 +28,6 @@ std::string folder_of(const std::string& path) {
 }
 
 namespace {
-
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
 
 // "Did you mean ...?" for an unknown field of a message type.
 std::string suggestion(const pb::Descriptor* d, const std::string& name) {

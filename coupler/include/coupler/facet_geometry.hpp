@@ -1,0 +1,34 @@
+#pragma once
+// Geometry of the tyre's quad surface facets from current node positions, and
+// the facet pressure force as a vector. Inputs follow SurfaceMesh /
+// SurfaceKinematics: per-node coordinate arrays and 4 node indices per facet,
+// ordered so that the right-hand normal points out of the tyre (tyre_fe::Mesh3D).
+#include <cstdint>
+#include <vector>
+
+namespace coupler {
+
+// Per facet: centroid, unit outward normal, area (structure of arrays).
+struct FacetGeometry {
+  std::vector<double> centroid_x_m, centroid_y_m, centroid_z_m;
+  std::vector<double> normal_x, normal_y, normal_z;
+  std::vector<double> area_m2;
+};
+
+// Centroid = mean of the 4 nodes; vector area = (x2 - x0) x (x3 - x1) / 2, exact
+// for a planar quad (the bilinear quad's mean normal otherwise). Throws
+// cosim::Error on size mismatches, out-of-range node indices or a zero-area facet.
+FacetGeometry quad_facet_geometry(const std::vector<double>& x_m, const std::vector<double>& y_m,
+                                  const std::vector<double>& z_m, const std::vector<std::uint32_t>& facet_nodes);
+
+// Pressure (normal) force on the tyre facet: P = -N n, with N the compressive
+// normal force (> 0 pushes into the tyre) and n the unit outward normal
+// (the CFN part of the contact force; thesis eq. 2.2 "due to contact pressure").
+struct Vec3 {
+  double x = 0.0, y = 0.0, z = 0.0;
+};
+inline Vec3 pressure_force(double normal_force_N, double nx, double ny, double nz) {
+  return {-normal_force_N * nx, -normal_force_N * ny, -normal_force_N * nz};
+}
+
+}  // namespace coupler

@@ -1,0 +1,24 @@
+#pragma once
+// Between the neutral topic structs (cosim_transport/topics.hpp, mirrors of
+// idl/cosim_topics.idl) and the coupler's physics inputs and outputs.
+#include "coupler/facet_geometry.hpp"
+#include "coupler/forces.hpp"
+#include "cosim_transport/topics.hpp"
+
+namespace coupler {
+
+// Per contacted facet of `loads`: its tag, the pressure force -N n from the
+// facet's outward normal in `geometry`, the tangential force, centroid and
+// contact area. `tags` and `geometry` cover every surface facet (SurfaceMesh;
+// geometry from the current node positions). Throws cosim::Error on size
+// mismatches or facet indices out of range.
+FacetLoads facet_loads_from_contact(const cosim::transport::ContactLoads& loads, const std::vector<FacetTag>& tags,
+                                    const FacetGeometry& geometry);
+
+// The rim state the decomposition needs, with the rolling radius r (eq. 5.1).
+WheelInput wheel_input(const cosim::transport::WheelState& wheel, double rolling_radius_m);
+
+// The ForceSummary sample of a decomposition.
+cosim::transport::ForceSummary force_summary(const ForceDecomposition& d, const cosim::transport::SampleHeader& header);
+
+}  // namespace coupler

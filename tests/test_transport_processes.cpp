@@ -1,0 +1,113 @@
+// The real solvers are separate processes: two cosim_transport_probe
+// processes (ping = tyre side, pong = terrain side), on every vendor pair,
+// exchange the durable mesh and 200 lock-step steps with content checked.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "cosim_transport/transport.hpp"
+#include "test_paths.hpp"
+#include "transport_test_support.hpp"
+
+extern char** environ;
+
+namespace {
+
+using namespace cosim::transport;
+using namespace test_support;
+
+DomainIds domains(150, 179);
+
+std::string probe_path() {
+  const char* bin = std::getenv("COSIM_BIN_DIR");
+  return std::string(bin ? bin : "build/bin") + "/cosim_transport_probe";
+}
+
+// A child process with stdout and stderr in `log`.
+struct Child {
+  pid_t pid = -1;
+  std::string log;
+  int status = -1;
+};
+
+Child start(const std::vector<std::string>& args, const std::string& log) {
+  Child c;
+  c.log = log;
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  const int rc = posix_spawn(&c.pid, argv[0], &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (rc != 0) c.pid = -1;
+  return c;
+}
+
+// Waits for both children; kills what is left at the deadline (exit status 128+9).
+void wait_all(std::vector<Child*> children, std::chrono::seconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  for (Child* c : children) {
+    if (c->pid <= 0) continue;
+    int status = 0;
+    while (waitpid(c->pid, &status, WNOHANG) == 0) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        kill(c->pid, SIGKILL);
+        waitpid(c->pid, &status, 0);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    c->status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class TwoProcesses : public testing::TestWithParam<VendorPair> {};
+
+TEST_P(TwoProcesses, LockStepAcrossProcesses) {
+  const std::string domain = std::to_string(domains.next());
+  const std::string run = std::to_string(new_run_id());
+  const std::string dir = scratch(std::string("transport_processes_") + pair_name({GetParam(), 0}));
+  const std::vector<std::string> common = {"--domain", domain, "--run-id", run, "--nodes", "2000",
+                                           "--steps", "200", "--timeout-ms", "15000"};
+  std::vector<std::string> pong_args = {probe_path(), "--dds", vendor_name(GetParam().reader), "--role", "pong"};
+  std::vector<std::string> ping_args = {probe_path(), "--dds", vendor_name(GetParam().writer), "--role", "ping"};
+  pong_args.insert(pong_args.end(), common.begin(), common.end());
+  ping_args.insert(ping_args.end(), common.begin(), common.end());
+
+  // The terrain side starts first; the tyre side's mesh must still reach it.
+  Child pong = start(pong_args, dir + "/pong.log");
+  ASSERT_GT(pong.pid, 0) << "cannot start " << probe_path();
+  Child ping = start(ping_args, dir + "/ping.log");
+  ASSERT_GT(ping.pid, 0) << "cannot start " << probe_path();
+  wait_all({&ping, &pong}, std::chrono::seconds(40));
+
+  const std::string ping_log = read_file(ping.log), pong_log = read_file(pong.log);
+  EXPECT_EQ(ping.status, 0) << "ping: " << ping_log;
+  EXPECT_EQ(pong.status, 0) << "pong: " << pong_log;
+  EXPECT_NE(ping_log.find("200 steps, 2000 nodes"), std::string::npos) << ping_log;
+  EXPECT_NE(ping_log.find("rejected 0"), std::string::npos) << ping_log;
+  EXPECT_NE(pong_log.find("200 steps answered, rejected 0"), std::string::npos) << pong_log;
+}
+
+INSTANTIATE_TEST_SUITE_P(Pairs, TwoProcesses, testing::ValuesIn(vendor_pairs()), pair_name);
+
+}  // namespace
