@@ -63,7 +63,7 @@ std::string csv_number(const nlohmann::json& v) {
 void plot(const std::string& dir, const std::string& field, const std::string& title) {
   const std::string script = dir + "/error_vs_runtime.gp";
   std::ofstream gp(script);
-  gp << "set terminal pngcairo size 900,600 font ',11'\n"
+  gp << "set terminal pngcairo size 900,600 font ',11' noenhanced\n"
      << "set output '" << dir << "/error_vs_runtime.png'\n"
      << "set datafile separator ','\n"
      << "set title '" << title << "'\n"

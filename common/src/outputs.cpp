@@ -125,7 +125,7 @@ bool plot_csv(const std::string& csv, const std::string& png, int x_column,
   const std::string script = png + ".gp";
   {
     std::ofstream gp(script);
-    gp << "set terminal pngcairo size 900,600 font ',11'\nset output '" << png << "'\n"
+    gp << "set terminal pngcairo size 900,600 font ',11' noenhanced\nset output '" << png << "'\n"
        << "set datafile separator ','\nset key autotitle columnhead\nset grid\n"
        << "set title '" << title << "'\nset xlabel '" << x_label << "'\nset ylabel '" << y_label << "'\n"
        << extra_commands << "plot ";
