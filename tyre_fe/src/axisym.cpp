@@ -80,6 +80,11 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
   std::vector<double> node_mass(n_nodes, 0.0);  // kg per radian
   std::vector<char> fixed(kDofsPerNode * n_nodes, 0);
   model.quads.reserve(s.quads.size());
+  const std::vector<int>& fixed_nodes = load.fixed_nodes ? *load.fixed_nodes : s.rim_nodes;
+  for (int node : fixed_nodes) {
+    check_node(node, n_nodes, "fixed_nodes");
+    for (int c = 0; c < kDofsPerNode; ++c) fixed[kDofsPerNode * node + c] = 1;
+  }
   double min_step = HUGE_VAL, min_shear_speed = HUGE_VAL;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(HUGE_VAL), hi = -lo;
   for (std::size_t q = 0; q < s.quads.size(); ++q) {
@@ -128,8 +133,14 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
       density *= (load.mass_scaling_time_step_s / step) * (load.mass_scaling_time_step_s / step);
       step = load.mass_scaling_time_step_s;
     }
-    min_step = std::min(min_step, step);
-    min_shear_speed = std::min(min_shear_speed, std::sqrt(d.shear_modulus_Pa / density));
+    // A quad whose nodes are all held (e.g. the bead tied to the rim) never deforms:
+    // it sets no step.
+    bool all_held = true;
+    for (int i = 0; i < 4; ++i) all_held = all_held && fixed[kDofsPerNode * d.nodes[i]];
+    if (!all_held) {
+      min_step = std::min(min_step, step);
+      min_shear_speed = std::min(min_shear_speed, std::sqrt(d.shear_modulus_Pa / density));
+    }
     for (int i = 0; i < 4; ++i) node_mass[d.nodes[i]] += 0.25 * density * d.ref.volume_per_rad_m3;
     model.quads.push_back(d);
   }
@@ -143,11 +154,6 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
     if (e[0] < 0 || static_cast<std::size_t>(e[0]) >= s.quads.size() || e[1] < 0 || e[1] > 3)
       fail("inner_liner_edges has an invalid (quad, edge) pair");
 
-  const std::vector<int>& fixed_nodes = load.fixed_nodes ? *load.fixed_nodes : s.rim_nodes;
-  for (int node : fixed_nodes) {
-    check_node(node, n_nodes, "fixed_nodes");
-    for (int c = 0; c < kDofsPerNode; ++c) fixed[kDofsPerNode * node + c] = 1;
-  }
   for (int node : load.fixed_y_nodes) {
     check_node(node, n_nodes, "fixed_y_nodes");
     fixed[kDofsPerNode * node + 1] = 1;

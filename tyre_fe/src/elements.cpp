@@ -193,6 +193,32 @@ double hex8_stable_time_step_s(const Hex8Reference& ref, double density_kg_per_m
   return 2.0 / std::sqrt(omega_sq);
 }
 
+double hex8_directional_gradient_sq_per_m2(const Hex8Reference& ref, const Eigen::Vector3d& a) {
+  double sum = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    const double g = a[0] * ref.dNdX[i][0] + a[1] * ref.dNdX[i][1] + a[2] * ref.dNdX[i][2];
+    sum += g * g;
+  }
+  return sum;
+}
+
+double hex8_stable_time_step_s(const Hex8Reference& ref, double density_kg_per_m3,
+                               double bulk_modulus_Pa, double shear_modulus_Pa,
+                               double hourglass_coefficient, double fibre_modulus_Pa,
+                               const Eigen::Vector3d& fibre_direction) {
+  const double k_hg =
+      hourglass_coefficient * shear_modulus_Pa * ref.volume_m3 * ref.gradient_sq_sum_per_m2;
+  const double a_norm = fibre_direction.norm();
+  const double fibre_gradient_sq =
+      a_norm > 0.0 ? hex8_directional_gradient_sq_per_m2(ref, fibre_direction / a_norm)
+                   : ref.gradient_gram_max_per_m2;
+  const double omega_sq =
+      8.0 / density_kg_per_m3 *
+      (max_modulus(bulk_modulus_Pa, shear_modulus_Pa) * ref.gradient_gram_max_per_m2 +
+       fibre_modulus_Pa * fibre_gradient_sq + k_hg * ref.hourglass_gram_max / ref.volume_m3);
+  return 2.0 / std::sqrt(omega_sq);
+}
+
 Quad4AxiReference quad4axi_reference(const double X[4][2]) {
   Quad4AxiReference ref{};
   double twice_area = 0.0;  // shoelace

@@ -1,6 +1,7 @@
 // Names of tyre regions and surface tags (used in input decks, configs and outputs).
 #include "tyre_fe/mesh.hpp"
 
+#include <algorithm>
 #include <cctype>
 
 #include "cosim/error.hpp"
@@ -54,6 +55,14 @@ const char* surface_tag_name(SurfaceTag t) {
     case SurfaceTag::count: break;
   }
   return "unknown";
+}
+
+void tie_region_to_rim(CrossSection& section, Region region) {
+  std::vector<int>& rim = section.rim_nodes;
+  for (std::size_t q = 0; q < section.quads.size(); ++q)
+    if (section.quad_region[q] == region) rim.insert(rim.end(), section.quads[q].begin(), section.quads[q].end());
+  std::sort(rim.begin(), rim.end());
+  rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
 }
 
 }  // namespace tyre_fe

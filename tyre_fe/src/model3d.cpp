@@ -38,6 +38,8 @@ Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSe
   m.element_wave_speed.resize(ne);
   m.node_mass_kg.assign(nn, 0.0);
 
+  std::vector<char> rim_node(nn, 0);
+  for (int n : mesh.rim_nodes) rim_node[n] = 1;
   double min_dt = std::numeric_limits<double>::infinity();
   std::vector<double> element_dt(ne);
   for (std::size_t e = 0; e < ne; ++e) {
@@ -74,18 +76,35 @@ Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSe
         m.rebar_fraction[e] = phi;
         m.rebar_modulus_Pa[e] = rebar.youngs_modulus_Pa;
         rho += phi * rebar.density_kg_per_m3;
-        modulus += phi * rebar.youngs_modulus_Pa;
       }
     }
     m.element_density[e] = rho;
+    // Dilatational wave speed of the host solid for the bulk viscosity: the bars do not
+    // resist a volume change through the layer, so their modulus must not raise the
+    // viscous pressure (with it the belt viscosity was ~1.4 x critical at the step).
     m.element_wave_speed[e] = std::sqrt(modulus / rho);
     // Bound of the element's highest frequency (exact for a cube, conservative when
     // distorted): L_e / c would overestimate the critical step of a one-point hex by up
-    // to sqrt(3) for nearly incompressible rubber.
-    element_dt[e] = options.time_step_safety *
+    // to sqrt(3) for nearly incompressible rubber. The rebar term is directional: the
+    // bars stiffen the layer along themselves, not through its thickness.
+    // Linear bulk viscosity damps the highest mode by xi = b1: the step shrinks by
+    // sqrt(1 + xi^2) - xi (Abaqus Analysis User's Guide, "Explicit dynamic analysis").
+    const double b1 = options.bulk_viscosity_linear;
+    element_dt[e] = options.time_step_safety * (std::sqrt(1.0 + b1 * b1) - b1) *
                     hex8_stable_time_step_s(m.reference[e], rho, solid.bulk_modulus_Pa(), solid.shear_modulus_Pa(),
-                                            materials.hourglass_coefficient, m.rebar_modulus_Pa[e] * m.rebar_fraction[e]);
+                                            materials.hourglass_coefficient, m.rebar_modulus_Pa[e] * m.rebar_fraction[e],
+                                            m.rebar_direction[e]);
+    // A hex whose nodes all move with the rigid rim (the tied bead) never deforms: it
+    // sets no step and is not mass scaled.
+    bool rigid = true;
+    for (int a = 0; a < 8; ++a) rigid = rigid && rim_node[mesh.hexes[e][a]];
+    if (rigid) {
+      element_dt[e] = std::numeric_limits<double>::infinity();
+      continue;
+    }
     if (element_dt[e] < min_dt) min_dt = element_dt[e], m.dt_controlling_element = static_cast<int>(e);
+    double& region_dt = m.region_min_dt_s[region];
+    if (region_dt == 0.0 || element_dt[e] < region_dt) region_dt = element_dt[e];
   }
   m.unscaled_dt_s = min_dt;
   m.stable_dt_s = min_dt;
@@ -102,6 +121,7 @@ Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSe
     }
     const double me = m.element_density[e] * m.reference[e].volume_m3;
     scaled += me;
+    m.region_added_mass_kg[m.material[e]] += me - mass;
     for (int a = 0; a < 8; ++a) m.node_mass_kg[mesh.hexes[e][a]] += me / 8.0;
   }
   // Every scaled element now has the target step; the others had more.

@@ -97,6 +97,22 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       write_mesh_vtk(out + "/mesh3d.vtk", mesh, mesh.nodes);
       write_facets_vtk(out + "/surface.vtk", mesh, mesh.nodes);
     }
+    // The model (masses, stable step) is cheap to build: mesh-only runs report the step too.
+    Model3dOptions mo;
+    mo.time_step_safety = scene.time().cfl() > 0 ? scene.time().cfl() : 0.8;
+    mo.mass_scaling_target_dt_s = t.mass_scaling_target_dt_s();
+    Model3d model = build_model3d(std::move(mesh), setup.materials, section, mo);
+    summary["time_step"] = {{"stable_dt_s", model.stable_dt_s},
+                            {"unscaled_stable_dt_s", model.unscaled_dt_s},
+                            {"controlling_region", region_name(model.mesh.hex_region[model.dt_controlling_element])},
+                            {"mass_scaling_target_dt_s", mo.mass_scaling_target_dt_s},
+                            {"physical_mass_kg", model.physical_mass_kg},
+                            {"added_mass_kg", model.added_mass_kg},
+                            {"added_mass_percent", 100.0 * model.added_mass_kg / model.physical_mass_kg}};
+    for (int r = 0; r < kRegionCount; ++r)
+      if (model.region_min_dt_s[r] > 0.0)
+        summary["time_step"]["regions"][region_name(static_cast<Region>(r))] = {
+            {"min_stable_dt_s", model.region_min_dt_s[r]}, {"added_mass_kg", model.region_added_mass_kg[r]}};
     if (options.mesh_only || t.mesh_only()) {
       write_summary("completed");
       return summary;
@@ -120,17 +136,6 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
     write_cross_section_vtk(out + "/cross_section_inflated.vtk", section, axi.nodes);
 
     // 2. Revolve and transfer; the 3D model starts inflated and at rest.
-    Model3dOptions mo;
-    mo.time_step_safety = scene.time().cfl() > 0 ? scene.time().cfl() : 0.8;
-    mo.mass_scaling_target_dt_s = t.mass_scaling_target_dt_s();
-    Model3d model = build_model3d(std::move(mesh), setup.materials, section, mo);
-    summary["time_step"] = {{"stable_dt_s", model.stable_dt_s},
-                            {"unscaled_stable_dt_s", model.unscaled_dt_s},
-                            {"controlling_region", region_name(model.mesh.hex_region[model.dt_controlling_element])},
-                            {"mass_scaling_target_dt_s", mo.mass_scaling_target_dt_s},
-                            {"physical_mass_kg", model.physical_mass_kg},
-                            {"added_mass_kg", model.added_mass_kg},
-                            {"added_mass_percent", 100.0 * model.added_mass_kg / model.physical_mass_kg}};
     double dt = model.stable_dt_s;
     if (scene.time().fixed_dt_s() > 0) {
       if (scene.time().fixed_dt_s() > model.stable_dt_s)
@@ -252,7 +257,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       // Effective rolling radius estimate R - deflection / 3 (a common estimate; Pacejka, Tire and Vehicle Dynamics, 2006).
       const double unloaded = results.value("unloaded_radius_m", free_radius(model, s));
       const double spin_up_radius = unloaded - (unloaded - (s.rim.z - s.road.height_m)) / 3.0;
-      double x_w = 0, a_w = 0, fx_sum = 0, m_sum = 0, fz_sum = 0;
+      double x_w = 0, a_w = 0, fx_sum = 0, m_sum = 0, fz_sum = 0, h_sum = 0, w_sum = 0;
       long n_w = 0;
       bool in_window = false;
       run_stage(2, st.rolling_s(), [&](double tau) {
@@ -276,6 +281,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
         if (s.time_s < t_window) return false;
         if (!in_window) x_w = s.rim.x, a_w = s.rim.angle, in_window = true;
         fx_sum += s.road.force_x_N, m_sum += s.rim.rm2_Nm, fz_sum += s.road.force_z_N, ++n_w;
+        h_sum += s.rim.z - s.road.height_m, w_sum += s.rim.omega;
         return false;
       });
       const double turned = s.rim.angle - a_w;
@@ -285,7 +291,14 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       results["rm2_Nm"] = n_w ? m_sum / n_w : 0.0;
       results["road_longitudinal_force_N"] = n_w ? fx_sum / n_w : 0.0;
       results["road_vertical_force_rolling_N"] = n_w ? fz_sum / n_w : 0.0;
-      results["loaded_radius_rolling_m"] = s.rim.z - s.road.height_m;
+      // Window means: the rim height above the road is the lever arm of the road's
+      // longitudinal force about the axle (moment balance of the tyre at steady state).
+      results["loaded_radius_rolling_m"] = n_w ? h_sum / n_w : s.rim.z - s.road.height_m;
+      results["spin_rate_rad_per_s"] = n_w ? w_sum / n_w : s.rim.omega;
+      results["road_longitudinal_force_moment_Nm"] =
+          n_w ? fx_sum / n_w * results["loaded_radius_rolling_m"].get<double>() : 0.0;
+      results["energy_balance_error"] = s.energy.balance_error();
+      results["energy_balance_J"] = s.energy.balance_J();
       results["drive_torque_Nm"] = rim.spin_case() == sc::RimSpec::kDriveTorqueNm ? rim.drive_torque_nm() : 0.0;
       results["averaging_window_s"] = window;
     }

@@ -206,6 +206,7 @@ TyreSetup tyre_setup(const cosim::LoadedScene& loaded) {
   s.pattern.sipe_depth_m = p.sipe_depth_m();
   s.pattern.elements_per_pitch = p.elements_per_pitch();
   s.bulk_to_shear_ratio = t.bulk_to_shear_ratio() > 0 ? t.bulk_to_shear_ratio() : 20.0;
+  s.bead_tied_to_rim = !t.rim().deformable_bead();
   cosim::ValidationReport report;
   const Materials mats = collect_materials(loaded, report);
   report.throw_if_failed();
@@ -242,11 +243,14 @@ TyreSetup tyre_setup(const cosim::LoadedScene& loaded) {
 }
 
 CrossSection make_section(const TyreSetup& setup) {
-  if (!setup.cross_section_inp.empty())
-    return import_abaqus_cross_section(setup.cross_section_inp,
-                                       setup.pattern.tread_width_m > 0 ? 0.5 * setup.pattern.tread_width_m
-                                                                       : 0.4 * setup.size.section_width_m);
-  return make_cross_section(setup.size, setup.pattern, setup.mesh);
+  CrossSection section =
+      !setup.cross_section_inp.empty()
+          ? import_abaqus_cross_section(setup.cross_section_inp, setup.pattern.tread_width_m > 0
+                                                                     ? 0.5 * setup.pattern.tread_width_m
+                                                                     : 0.4 * setup.size.section_width_m)
+          : make_cross_section(setup.size, setup.pattern, setup.mesh);
+  if (setup.bead_tied_to_rim) tie_region_to_rim(section, Region::bead);
+  return section;
 }
 
 }  // namespace tyre_fe

@@ -11,10 +11,13 @@
 
 namespace tyre_fe {
 
+double Energies::balance_J() const {
+  return kinetic_J + internal_J - initial_J - external_work_J - damping_work_J - contact_work_J;
+}
+
 double Energies::balance_error() const {
   const double scale = std::max({std::fabs(internal_J), kinetic_J, std::fabs(external_work_J), 1e-30});
-  return std::fabs(kinetic_J + internal_J - initial_J - external_work_J - damping_work_J - contact_work_J) /
-         scale;
+  return std::fabs(balance_J()) / scale;
 }
 
 State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& current,

@@ -62,6 +62,23 @@ double hex8_stable_time_step_s(const Hex8Reference& ref, double density_kg_per_m
                                double bulk_modulus_Pa, double shear_modulus_Pa,
                                double hourglass_coefficient, double fibre_modulus_Pa = 0.0);
 
+// Sharper bound for an element whose smeared rebar runs along the unit reference
+// direction a0. The rebar adds the rank-one stiffness E_fibre V g g^T with
+// g_(i,k) = (a0 . dN_i/dX) a0_k (one-point strain along the bar, Bathe, Finite Element
+// Procedures, 2014, sec. 5.4), whose eigenvalue is E_fibre V sum_i (a0 . dN_i/dX)^2.
+// In a thin belt or ply layer the bars lie in the layer, so this sees the in-plane
+// element length instead of the layer thickness: the steel no longer sets the step
+// through the thickness, where only rubber resists. The geometric stiffness of the bar
+// tension has the same directional form times phi sigma_bar << E_fibre (strains below
+// 1 %), left to the safety factor.
+double hex8_stable_time_step_s(const Hex8Reference& ref, double density_kg_per_m3,
+                               double bulk_modulus_Pa, double shear_modulus_Pa,
+                               double hourglass_coefficient, double fibre_modulus_Pa,
+                               const Eigen::Vector3d& fibre_direction);
+
+// sum_i (a . dN_i/dX)^2 [1/m^2]: the squared gradient of the one-point strain along a.
+double hex8_directional_gradient_sq_per_m2(const Hex8Reference& ref, const Eigen::Vector3d& a);
+
 // Axisymmetric 4-node quadrilateral in the (r, y) plane with twist (CGAX4R-type, the
 // Abaqus "generalized axisymmetric stress/displacement elements with twist"; Abaqus
 // Theory Manual, section "Axisymmetric elements"), node order counter-clockwise.

@@ -86,6 +86,10 @@ struct CrossSection {
   double tread_half_width_m = 0.0;
 };
 
+// Adds every node of the region's quads to the rim nodes (sorted, no repeats): the
+// region then moves rigidly with the rim (used for the steel bead bundle).
+void tie_region_to_rim(CrossSection& section, Region region);
+
 // 3D mesh of 8-node hexahedra revolved from a cross-section (with a tread pattern).
 // Node order of a hex: the quad's nodes in reverse order (q0, q3, q2, q1) at angle
 // theta_j, then the same at theta_j+1. A counter-clockwise (r, y) quad has its

@@ -3,6 +3,7 @@
 // precomputed once (element reference data, materials, lumped masses, the
 // node -> element map for a deterministic gather, the loaded and contacting
 // surfaces).
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -45,6 +46,9 @@ struct Model3d {
   double physical_mass_kg = 0.0;
   double added_mass_kg = 0.0;
   int dt_controlling_element = -1;
+  // Per region: smallest unscaled element step and mass added by scaling (0 if none).
+  std::array<double, kRegionCount> region_min_dt_s{};
+  std::array<double, kRegionCount> region_added_mass_kg{};
   Model3dOptions options;
 };
 

@@ -19,6 +19,7 @@ struct TyreSetup {
   TyreMaterials materials;
   std::string materials_source;
   double bulk_to_shear_ratio = 20.0;
+  bool bead_tied_to_rim = true;  // scene: tyre.rim.deformable_bead = false
 };
 
 // Checks the tyre section: ranges, materials of all regions, tread pattern rules.

@@ -59,6 +59,9 @@ struct Energies {
   double contact_work_J = 0.0;   // work of the road forces (penalty + friction)
   double initial_J = 0.0;        // E_kin + E_int at the first step (the inflated state)
   // |E_kin + E_int - E_0 - W_ext - W_damp - W_contact| / max(E_int, E_kin, |W_ext|)
+  // KE + IE - E0 - W_ext - W_damping - W_contact [J]: > 0 energy created by the
+  // integration (spurious growth), < 0 energy lost without being booked.
+  double balance_J() const;
   double balance_error() const;
 };
 
