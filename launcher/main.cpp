@@ -2,11 +2,15 @@
 //   cosim run SCENE --out DIR [--set field.path=value ...]
 //   cosim check SCENE [--set ...]
 //   cosim study STUDY --out DIR
+//   cosim monitor [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...] [--csv FILE]
 #include <cstdio>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "cosim/error.hpp"
+#include "cosim/interrupt.hpp"
+#include "monitor.hpp"
 #include "study.hpp"
 
 int main(int argc, char** argv) {
@@ -31,12 +35,46 @@ int main(int argc, char** argv) {
   study_cmd->add_option("study", study_file, "study file")->required();
   study_cmd->add_option("--out", study_out, "output folder")->required();
   study_cmd->add_flag("--no-vtk", study_no_vtk, "do not write VTK files");
+  cosim::MonitorOptions monitor;
+  std::string monitor_vendor = "cyclone", monitor_run_id;
+  std::vector<std::string> monitor_peers;
+  bool monitor_multicast = false;
+  auto* monitor_cmd = app.add_subcommand("monitor", "live view of a run's force topics (join at any time)");
+  monitor_cmd->add_option("--dds", monitor_vendor, "DDS vendor of this process: fast or cyclone");
+  monitor_cmd->add_option("--domain", monitor.transport.domain_id, "DDS domain id of the run");
+  monitor_cmd->add_option("--interface", monitor.transport.network_interface, "network interface or IPv4 address");
+  monitor_cmd->add_option("--peer", monitor_peers, "IPv4 address of a host of the run (unicast discovery)");
+  monitor_cmd->add_flag("--multicast", monitor_multicast, "multicast discovery instead of peers");
+  monitor_cmd->add_option("--csv", monitor.csv_path, "record every force sample to this CSV file");
+  monitor_cmd->add_option("--refresh", monitor.refresh_s, "screen refresh interval [s]");
+  monitor_cmd->add_option("--run-id", monitor_run_id, "follow this run (hex); default: the first seen");
+  monitor_cmd->add_option("--max-samples", monitor.max_samples, "stop after this many samples");
+  monitor_cmd->add_option("--idle-timeout", monitor.idle_timeout_s, "stop after this long without samples [s]");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return cosim::run_scene_processes(run);
     if (*check_cmd) {
       cosim::check_scene(*cosim::load_scene(check_file, check_sets));
       std::printf("%s: ok\n", check_file.c_str());
+      return 0;
+    }
+    if (*monitor_cmd) {
+      cosim::install_interrupt_handler();
+      monitor.vendor = cosim::transport::parse_vendor(monitor_vendor);
+      if (!monitor_peers.empty()) monitor.transport.static_peers = monitor_peers;
+      monitor.transport.multicast = monitor_multicast;
+      if (!monitor_run_id.empty()) {
+        std::size_t used = 0;
+        try {
+          monitor.run_id = std::stoull(monitor_run_id, &used, 16);
+        } catch (const std::exception&) {
+        }
+        if (used != monitor_run_id.size() || monitor.run_id == 0)
+          throw cosim::Error("--run-id '" + monitor_run_id + "' is not a hexadecimal run id");
+      }
+      const auto r = cosim::run_monitor(monitor, stdout);
+      std::printf("cosim monitor: %s after %llu samples\n", r.end_reason.c_str(),
+                  static_cast<unsigned long long>(r.samples));
       return 0;
     }
     return cosim::run_study(study_file, study_out, study_no_vtk);
