@@ -183,14 +183,9 @@ double hex8_internal_forces(const Hex8Reference& ref, const double x[8][3],
 double hex8_stable_time_step_s(const Hex8Reference& ref, double density_kg_per_m3,
                                double bulk_modulus_Pa, double shear_modulus_Pa,
                                double hourglass_coefficient, double fibre_modulus_Pa) {
-  const double k_hg =
-      hourglass_coefficient * shear_modulus_Pa * ref.volume_m3 * ref.gradient_sq_sum_per_m2;
-  const double omega_sq =
-      8.0 / density_kg_per_m3 *
-      ((max_modulus(bulk_modulus_Pa, shear_modulus_Pa) + fibre_modulus_Pa) *
-           ref.gradient_gram_max_per_m2 +
-       k_hg * ref.hourglass_gram_max / ref.volume_m3);
-  return 2.0 / std::sqrt(omega_sq);
+  // No direction: the rebar term takes the largest gradient eigenvalue (any direction).
+  return hex8_stable_time_step_s(ref, density_kg_per_m3, bulk_modulus_Pa, shear_modulus_Pa,
+                                 hourglass_coefficient, fibre_modulus_Pa, Eigen::Vector3d::Zero());
 }
 
 double hex8_directional_gradient_sq_per_m2(const Hex8Reference& ref, const Eigen::Vector3d& a) {
