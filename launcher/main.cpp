@@ -24,6 +24,10 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--quiet", run.quiet, "no progress line");
   run_cmd->add_flag("--no-vtk", run.no_vtk, "do not write VTK files");
   run_cmd->add_flag("--mesh-only", run.mesh_only, "tyre scenes: write the meshes and their statistics only");
+  run_cmd->add_option("--dds", run.dds,
+                      "coupled scenes: DDS vendor, for all (fast|cyclone) or per process "
+                      "(tyre=fast,terrain=cyclone,coupler=cyclone)");
+  run_cmd->add_option("--domain", run.domain, "coupled scenes: DDS domain id (default: the scene's coupling.domain_id)");
   std::string check_file;
   std::vector<std::string> check_sets;
   auto* check_cmd = app.add_subcommand("check", "validate a scene without running it");

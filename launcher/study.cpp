@@ -9,15 +9,20 @@
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/process.hpp"
+#include "coupled_run.hpp"
+#include "coupler/scene_checks.hpp"
 #include "snow_sph/scene.hpp"
 #include "tyre_fe/scene.hpp"
 
 namespace cosim {
 
 std::vector<std::string> participants(const scene::Scene& scene) {
-  if (scene.has_sph() && scene.has_tyre())
-    throw Error("scene '" + scene.name() + "' has a tyre and an SPH terrain: the coupled run (tyre_fe + "
-                "snow_sph + coupler over DDS) is not built yet");
+  if (scene.has_tyre() && scene.coupling().terrain() == "rigid_road") return {"tyre_fe"};
+  if (scene.has_sph() && scene.has_tyre()) {
+    if (scene.coupling().terrain().empty())
+      throw Error("scene '" + scene.name() + "' has a tyre and an SPH terrain but no `coupling { terrain: ... }`");
+    return {"coupler", "snow_sph", "tyre_fe"};
+  }
   if (scene.has_tyre()) return {"tyre_fe"};
   if (scene.has_sph()) return {"snow_sph"};
   throw Error("scene '" + scene.name() + "' has nothing to run (no `sph` terrain, no `tyre`)");
@@ -25,8 +30,10 @@ std::vector<std::string> participants(const scene::Scene& scene) {
 
 void check_scene(const LoadedScene& scene) {
   ValidationReport report;
-  snow_sph::validate_sph_scene(scene, report);
+  // A tyre on the rigid road ignores the scene's terrain blocks.
+  if (scene.message.coupling().terrain() != "rigid_road") snow_sph::validate_sph_scene(scene, report);
   tyre_fe::validate_tyre_scene(scene, report);
+  coupler::validate_coupling_scene(scene, report);
   report.throw_if_failed();
 }
 
@@ -34,6 +41,7 @@ int run_scene_processes(const RunRequest& request) {
   const auto scene = load_scene(request.scene_file, request.sets);
   check_scene(*scene);
   const auto programs = participants(scene->message);
+  if (programs.size() > 1) return run_coupled(request, *scene);
   const char* why = programs.front() == "tyre_fe" ? "(tyre on a rigid road: no SPH, no DDS)"
                                                   : "(no tyre, no DDS)";
   std::fprintf(stderr, "cosim: scene '%s' needs: %s alone %s\n", scene->message.name().c_str(),

@@ -7,8 +7,9 @@
 
 namespace cosim {
 
-// The programs a scene needs, in start order: snow_sph alone for a terrain
-// scene, tyre_fe alone for a tyre on a rigid road.
+// The programs a scene needs: snow_sph alone for a terrain scene, tyre_fe
+// alone for a tyre on a rigid road (also a coupled scene whose terrain is
+// "rigid_road"), and coupler + snow_sph + tyre_fe for a tyre on an SPH terrain.
 std::vector<std::string> participants(const scene::Scene& scene);
 
 // Validates every part of a scene; throws cosim::Error listing all problems.
@@ -21,6 +22,10 @@ struct RunRequest {
   bool quiet = false;
   bool no_vtk = false;
   bool mesh_only = false;  // tyre scenes: write the meshes only
+  // Coupled scenes: DDS vendor per process ("fast", "cyclone" or
+  // "tyre=fast,terrain=cyclone,coupler=cyclone") and domain (-1: the scene's).
+  std::string dds = "cyclone";
+  int domain = -1;
 };
 // Starts the participants of the scene and waits; returns the exit code.
 int run_scene_processes(const RunRequest& request);

@@ -139,4 +139,23 @@ bool plot_csv(const std::string& csv, const std::string& png, int x_column,
   return ok;
 }
 
+bool plot_csv_map(const std::string& csv, const std::string& png, int x_column, int y_column, int value_column,
+                  const std::string& title, const std::string& x_label, const std::string& y_label,
+                  const std::string& value_label) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+  const std::string script = png + ".gp";
+  {
+    std::ofstream gp(script);
+    gp << "set terminal pngcairo size 900,700 font ',11' noenhanced\nset output '" << png << "'\n"
+       << "set datafile separator ','\nset grid\nset size ratio -1\nset palette rgb 33,13,10\n"
+       << "set title '" << title << "'\nset xlabel '" << x_label << "'\nset ylabel '" << y_label << "'\n"
+       << "set cblabel '" << value_label << "'\n"
+       << "plot '" << csv << "' every ::1 using " << x_column << ":" << y_column << ":" << value_column
+       << " with points pt 5 ps 1.2 palette notitle\n";
+  }
+  const bool ok = std::system(("gnuplot '" + script + "' >/dev/null 2>&1").c_str()) == 0;
+  std::remove(script.c_str());
+  return ok;
+}
+
 }  // namespace cosim

@@ -248,9 +248,14 @@ std::unique_ptr<LoadedScene> load_scene(const std::string& path,
     const auto eq = o.find('=');
     loaded->overrides[o.substr(0, eq)] = o.substr(eq + 1);
   }
+  // A coupled scene's terrain line fills the blocks without a material of their own.
+  auto* sph = loaded->message.has_sph() ? loaded->message.mutable_sph() : nullptr;
+  const std::string& terrain = loaded->message.coupling().terrain();
+  if (sph && !terrain.empty() && terrain != "rigid_road")
+    for (auto& block : *sph->mutable_blocks())
+      if (!block.has_material()) block.mutable_material()->set_material_file(terrain);
   // Resolve material files: the file gives the base, fields set inline win.
   // (mutable_sph() would create an empty terrain in a tyre-only scene.)
-  auto* sph = loaded->message.has_sph() ? loaded->message.mutable_sph() : nullptr;
   for (int b = 0; sph && b < sph->blocks_size(); ++b) {
     auto* material = sph->mutable_blocks(b)->mutable_material();
     if (material->material_file().empty()) continue;

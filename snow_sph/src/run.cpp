@@ -62,6 +62,13 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
 
   Model model = build_model(scene);
   Solver solver(model);
+  const bool coupled = options.exchange != nullptr;
+  if (coupled) {
+    // Planned end: the tyre's coupled stages (the tyre ends the run).
+    const auto& st = scene.tyre().stages();
+    model.settings.end_time = st.loading_s() + st.rolling_s();
+    model.settings.max_steps = 0;
+  }
   cosim::Progress progress(scene.name(), model.settings.end_time, options.quiet);
   const auto& sph = scene.sph();
 
@@ -90,7 +97,7 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
   }
   summary["materials"] = materials;
 
-  std::unique_ptr<cosim::CsvWriter> energy_csv, bodies_csv, front_csv, probe_csv;
+  std::unique_ptr<cosim::CsvWriter> energy_csv, bodies_csv, front_csv, probe_csv, contact_csv;
   std::unique_ptr<cosim::VtkSeries> vtk;
   double dt_min = 1e300, dt_max = 0.0, dt_sum = 0.0;
   std::size_t clamped = 0;
@@ -132,9 +139,38 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
       bodies_csv->row(row);
     }
     if (front_csv) front_csv->row({t, surge_front(model)});
+    if (contact_csv) {
+      const SurfaceLoads& l = solver.surface_loads();
+      double area = 0.0, in_contact = 0.0;
+      for (double a : l.facet_contact_area_m2) area += a;
+      for (auto c : l.particles_in_contact) in_contact += c;
+      contact_csv->row({t, l.total_fx_N, l.total_fy_N, l.total_fz_N, area, in_contact});
+    }
   };
 
   try {
+    if (coupled) {
+      const auto& c = scene.coupling();
+      SurfaceContactParameters contact;
+      contact.particle_radius_m = 0.5 * model.settings.spacing;
+      contact.stiffness_N_per_m = model.settings.contact_stiffness *
+                                  (c.contact_stiffness_scale() > 0 ? c.contact_stiffness_scale() : 1.0);
+      solver.couple(options.exchange, contact);
+      const double limit = solver.stability_limit_dt();
+      const double agreed = options.exchange->connect(model.settings.cfl * limit);
+      if (!(agreed > 0) || agreed > limit)
+        throw cosim::Error("the agreed coupled time step " + std::to_string(agreed) +
+                           " s is above the terrain's stable limit " + std::to_string(limit) + " s");
+      model.settings.fixed_dt = agreed;
+      summary["coupled_dt_s"] = agreed;
+      summary["surface_contact"] = {{"particle_radius_m", contact.particle_radius_m},
+                                    {"stiffness_N_per_m", contact.stiffness_N_per_m},
+                                    {"damping_ratio", contact.damping_ratio}};
+      contact_csv = std::make_unique<cosim::CsvWriter>(
+          out + "/terrain_contact.csv",
+          std::vector<std::string>{"time_s", "force_on_surface_x_N", "force_on_surface_y_N", "force_on_surface_z_N",
+                                   "contact_area_m2", "particles_in_contact"});
+    }
     solver.initialise();
     std::vector<std::string> energy_cols{"time_s", "kinetic_J", "internal_J", "elastic_stored_J",
                                          "plastic_dissipation_J", "viscous_dissipation_J",
@@ -160,9 +196,11 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
     if (vtk) write_vtk(), next_vtk = vtk_interval;
     const double floor_x = 0.5 * (model.container_min[0] + model.container_max[0]);
     const double floor_y = 0.5 * (model.container_min[1] + model.container_max[1]);
-    while (solver.time() < t_end - 1e-12 &&
-           (model.settings.max_steps == 0 || solver.steps() < model.settings.max_steps)) {
+    while (coupled || (solver.time() < t_end - 1e-12 &&
+                       (model.settings.max_steps == 0 || solver.steps() < model.settings.max_steps))) {
+      if (solver.stopped()) break;
       const StepStats st = solver.step();
+      if (st.stopped) break;
       dt_min = std::min(dt_min, st.dt), dt_max = std::max(dt_max, st.dt), dt_sum += st.dt;
       clamped += st.clamped;
       if (cosim::interrupt_requested())
@@ -184,9 +222,17 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
     if (vtk && vtk->frames() > 0 && next_vtk - vtk_interval < solver.time() - 1e-12) write_vtk();
     progress.finish(solver.time(), solver.steps());
     summary["status"] = "completed";
+    if (coupled) options.exchange->finish(false, "");
   } catch (const std::exception& e) {
     summary["status"] = "failed";
     summary["error"] = e.what();
+    if (coupled) {
+      try {
+        options.exchange->finish(true, e.what());
+      } catch (const std::exception&) {
+        // The peers learn of it by their time-out.
+      }
+    }
   }
 
   const double wall = progress.elapsed_s();
@@ -205,6 +251,11 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
       {"interactions_per_s", wall > 0 ? 2.0 * inter / wall : 0.0},
       {"note", "interactions: neighbour pairs within the support, counted from both sides, "
                "evaluated twice per step (rates and forces)"}};
+  if (coupled) {
+    summary["performance"]["exchange_wait_s"] = solver.exchange_wait_s();
+    summary["performance"]["compute_s"] = wall - solver.exchange_wait_s();
+    summary["performance"]["compute_s_per_step"] = steps ? (wall - solver.exchange_wait_s()) / steps : 0.0;
+  }
 
   nlohmann::json results = nlohmann::json::object();
   for (const auto& b : model.bodies) {
@@ -235,7 +286,7 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
   summary["results"] = results;
   // Pictures a person would rather look at than read.
   try {
-    energy_csv.reset(), bodies_csv.reset(), front_csv.reset(), probe_csv.reset();
+    energy_csv.reset(), bodies_csv.reset(), front_csv.reset(), probe_csv.reset(), contact_csv.reset();
     nlohmann::json plots = nlohmann::json::array();
     if (cosim::plot_csv(out + "/energy.csv", out + "/energy.png", 1,
                         {{2, "kinetic"}, {3, "internal"}, {6, "viscous"}, {8, "external work"}},

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <Eigen/Dense>
+#include <omp.h>
 
 #include "cosim/error.hpp"
 #include "cosim/parallel.hpp"
@@ -54,6 +55,7 @@ double Solver::stability_limit_dt() const {
     // Penalty spring: omega dt < 2 is the central-difference limit.
     limit = std::min(limit, 2.0 * std::sqrt(m_min / m_.settings.contact_stiffness));
   }
+  if (exchange_) limit = std::min(limit, surface_contact_limit_dt());
   return limit;
 }
 
@@ -399,6 +401,46 @@ void Solver::compute_contact(double dt) {
   energy_.contact_elastic = stored;
 }
 
+void Solver::couple(SurfaceExchange* exchange, const SurfaceContactParameters& parameters) {
+  exchange_ = exchange;
+  surface_params_ = parameters;
+}
+
+double Solver::surface_contact_limit_dt() const {
+  if (!exchange_) return 0.0;
+  const Particles& p = m_.particles;
+  double m_min = 1e30;
+  for (std::size_t i = 0; i < p.n_real; ++i) m_min = std::min(m_min, p.mass[i]);
+  return surface_contact_stable_dt(m_min, surface_params_.stiffness_N_per_m);
+}
+
+void Solver::exchange_surface(std::uint64_t exchange, double dt) {
+  surface_power_ = 0.0;
+  const double t0 = omp_get_wtime();
+  const ContactSurface* surface = exchange_->surface(exchange);
+  exchange_wait_s_ += omp_get_wtime() - t0;
+  if (!surface) {
+    stopped_ = true;
+    return;
+  }
+  Particles& p = m_.particles;
+  const std::size_t n = p.n_real;
+  a_before_.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    a_before_[3 * i] = p.ax[i], a_before_[3 * i + 1] = p.ay[i], a_before_[3 * i + 2] = p.az[i];
+  surface_contact(*surface, surface_params_, n, p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(),
+                  p.vz.data(), p.mass.data(), dt, p.ax.data(), p.ay.data(), p.az.data(), surface_loads_);
+  // Power of the surface on the particles (external work of the terrain model).
+  double power = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    power += p.mass[i] * ((p.ax[i] - a_before_[3 * i]) * p.vx[i] + (p.ay[i] - a_before_[3 * i + 1]) * p.vy[i] +
+                          (p.az[i] - a_before_[3 * i + 2]) * p.vz[i]);
+  surface_power_ = power;
+  const double t1 = omp_get_wtime();
+  exchange_->send_loads(exchange, surface_loads_);
+  exchange_wait_s_ += omp_get_wtime() - t1;
+}
+
 void Solver::initialise() {
   Particles& p = m_.particles;
   w_dx_ = m_.kernel.value(m_.settings.spacing);
@@ -421,6 +463,7 @@ void Solver::initialise() {
   compute_forces();
   wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), wall_power_.data());
   compute_contact(1e-30 + stable_dt());
+  if (exchange_) exchange_surface(0, stable_dt());
   energy_ = EnergyBalance{};
   energy_.contact_elastic = 0.0;
   update_energy(0.0);
@@ -464,7 +507,7 @@ void Solver::update_energy(double dt) {
   energy_.internal += ip * dt;
   energy_.viscous_dissipation += vp * dt;
   energy_.plastic_dissipation += pl;
-  energy_.external_work += (gw + body_work) * dt;
+  energy_.external_work += (gw + body_work + surface_power_) * dt;
 }
 
 StepStats Solver::step() {
@@ -499,6 +542,10 @@ StepStats Solver::step() {
   compute_forces();
   wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), wall_power_.data());
   compute_contact(dt);
+  if (exchange_) {
+    exchange_surface(steps_ + 1, dt);
+    stats.stopped = stopped_;
+  }
   update_energy(dt);
   for (std::size_t i = 0; i < p.n_real; ++i) interactions_ += p.neighbour_count[i];
   dt_prev_ = dt;

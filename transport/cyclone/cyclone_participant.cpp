@@ -94,9 +94,8 @@ class Domain {
   dds_entity_t participant() const { return participant_; }
 
   template <class T>
-  dds_entity_t topic() {
+  dds_entity_t topic(const std::string& name) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const std::string name = TopicName<T>::value;
     auto it = topics_.find(name);
     if (it != topics_.end()) return it->second;
     const dds_entity_t t =
@@ -134,17 +133,17 @@ struct Qos {
 template <class T>
 class CycloneWriter final : public Writer<T> {
  public:
-  CycloneWriter(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)) {
+  CycloneWriter(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)), name_(topic_name<T>(t)) {
     Qos qos(t);
-    writer_ = dds_create_writer(domain_->participant(), domain_->topic<T>(), qos.q, nullptr);
-    check(writer_, std::string("cannot create a writer of ") + TopicName<T>::value);
+    writer_ = dds_create_writer(domain_->participant(), domain_->topic<T>(name_), qos.q, nullptr);
+    check(writer_, "cannot create a writer of " + name_);
   }
   ~CycloneWriter() override { dds_delete(writer_); }
 
   void write(const T& sample) override {
     typename cyclone::WireTypes<T>::Wire w{};
     cyclone::view(sample, w, scratch_);
-    check(dds_write(writer_, &w), std::string("write to ") + TopicName<T>::value);
+    check(dds_write(writer_, &w), "write to " + name_);
   }
   int matched_count() const override {
     dds_publication_matched_status_t s{};
@@ -157,6 +156,7 @@ class CycloneWriter final : public Writer<T> {
 
  private:
   std::shared_ptr<Domain> domain_;
+  std::string name_;
   dds_entity_t writer_ = 0;
   cyclone::Scratch scratch_;
 };
@@ -164,10 +164,10 @@ class CycloneWriter final : public Writer<T> {
 template <class T>
 class CycloneReader final : public Reader<T> {
  public:
-  CycloneReader(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)) {
+  CycloneReader(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)), name_(topic_name<T>(t)) {
     Qos qos(t);
-    reader_ = dds_create_reader(domain_->participant(), domain_->topic<T>(), qos.q, nullptr);
-    check(reader_, std::string("cannot create a reader of ") + TopicName<T>::value);
+    reader_ = dds_create_reader(domain_->participant(), domain_->topic<T>(name_), qos.q, nullptr);
+    check(reader_, "cannot create a reader of " + name_);
     const dds_entity_t cond = dds_create_readcondition(reader_, DDS_ANY_STATE);
     check(cond, "cannot create a read condition");
     waitset_ = dds_create_waitset(domain_->participant());
@@ -210,7 +210,7 @@ class CycloneReader final : public Reader<T> {
       void* buffer[1] = {nullptr};
       dds_sample_info_t info[1];
       const dds_return_t n = dds_take(reader_, buffer, info, 1, 1);
-      check(n, std::string("take from ") + TopicName<T>::value);
+      check(n, "take from " + name_);
       if (n == 0) return false;
       const bool valid = info[0].valid_data;
       if (valid) cyclone::from_wire(*static_cast<const typename cyclone::WireTypes<T>::Wire*>(buffer[0]), out);
@@ -220,6 +220,7 @@ class CycloneReader final : public Reader<T> {
   }
 
   std::shared_ptr<Domain> domain_;
+  std::string name_;
   dds_entity_t reader_ = 0;
   dds_entity_t waitset_ = 0;
 };

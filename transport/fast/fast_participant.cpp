@@ -127,13 +127,14 @@ class Domain {
 
   // The topic of T, registering its type on first use.
   template <class T>
-  dds::Topic* topic() {
+  dds::Topic* topic(const std::string& name) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const std::string name = TopicName<T>::value;
     auto it = topics_.find(name);
     if (it != topics_.end()) return it->second;
     dds::TypeSupport type(new typename fast::WireTypes<T>::PubSub());
-    if (type.register_type(participant_) != ReturnCode_t::RETCODE_OK)
+    // One type may serve several topics (TopicQos::channel): register it once.
+    if (participant_->find_type(type.get_type_name()).empty() &&
+        type.register_type(participant_) != ReturnCode_t::RETCODE_OK)
       throw Error("Fast DDS: cannot register type " + type.get_type_name());
     dds::Topic* t = participant_->create_topic(name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT);
     if (!t) throw Error("Fast DDS: cannot create topic " + name);
@@ -187,7 +188,7 @@ void set_common_qos(Qos& q, const TopicQos& t) {
 template <class T>
 class FastWriter final : public Writer<T> {
  public:
-  FastWriter(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)) {
+  FastWriter(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)), name_(topic_name<T>(t)) {
     dds::DataWriterQos q = domain_->publisher()->get_default_datawriter_qos();
     set_common_qos(q, t);
     q.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
@@ -197,14 +198,14 @@ class FastWriter final : public Writer<T> {
     q.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
     q.liveliness().lease_duration = eprosima::fastrtps::c_TimeInfinite;
     q.liveliness().announcement_period = eprosima::fastrtps::c_TimeInfinite;
-    writer_ = domain_->publisher()->create_datawriter(domain_->topic<T>(), q);
-    if (!writer_) throw Error(std::string("Fast DDS: cannot create a writer of ") + TopicName<T>::value);
+    writer_ = domain_->publisher()->create_datawriter(domain_->topic<T>(name_), q);
+    if (!writer_) throw Error("Fast DDS: cannot create a writer of " + name_);
   }
   ~FastWriter() override { domain_->publisher()->delete_datawriter(writer_); }
 
   void write(const T& sample) override {
     fast::to_wire(sample, wire_);
-    if (!writer_->write(&wire_)) throw Error(std::string("Fast DDS: write to ") + TopicName<T>::value + " failed");
+    if (!writer_->write(&wire_)) throw Error("Fast DDS: write to " + name_ + " failed");
   }
   int matched_count() const override {
     dds::PublicationMatchedStatus s;
@@ -227,6 +228,7 @@ class FastWriter final : public Writer<T> {
 
  private:
   std::shared_ptr<Domain> domain_;
+  std::string name_;
   dds::DataWriter* writer_ = nullptr;
   typename fast::WireTypes<T>::Wire wire_;
 };
@@ -234,11 +236,11 @@ class FastWriter final : public Writer<T> {
 template <class T>
 class FastReader final : public Reader<T> {
  public:
-  FastReader(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)) {
+  FastReader(std::shared_ptr<Domain> d, const TopicQos& t) : domain_(std::move(d)), name_(topic_name<T>(t)) {
     dds::DataReaderQos q = domain_->subscriber()->get_default_datareader_qos();
     set_common_qos(q, t);
-    reader_ = domain_->subscriber()->create_datareader(domain_->topic<T>(), q);
-    if (!reader_) throw Error(std::string("Fast DDS: cannot create a reader of ") + TopicName<T>::value);
+    reader_ = domain_->subscriber()->create_datareader(domain_->topic<T>(name_), q);
+    if (!reader_) throw Error("Fast DDS: cannot create a reader of " + name_);
   }
   ~FastReader() override { domain_->subscriber()->delete_datareader(reader_); }
 
@@ -278,6 +280,7 @@ class FastReader final : public Reader<T> {
   }
 
   std::shared_ptr<Domain> domain_;
+  std::string name_;
   dds::DataReader* reader_ = nullptr;
   typename fast::WireTypes<T>::Wire wire_;
 };

@@ -144,10 +144,17 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
                            std::to_string(model.stable_dt_s) + " s");
       dt = scene.time().fixed_dt_s();
     }
+    std::uint64_t coupled_from_step = 0;
+    double coupled_from_wall = 0.0;
     State3d s = make_state3d(model, revolve_positions(model.mesh, axi.nodes, axi.twist_rad), t.rim().mass_kg(),
                              t.rim().spin_inertia_kg_m2());
     s.dt_s = dt;
     s.pressure_Pa = t.inflation_pressure_pa();
+    // Forces of the ground on the tyre: the rigid road, or a terrain solver's loads.
+    auto ground_fx = [&] { return s.road.force_x_N + s.terrain.loads.total_x_N; };
+    auto ground_fy = [&] { return s.road.force_y_N + s.terrain.loads.total_y_N; };
+    auto ground_fz = [&] { return s.road.force_z_N + s.terrain.loads.total_z_N; };
+    auto ground_area = [&] { return s.road.contact_area_m2 + s.terrain.loads.contact_area_m2; };
     const auto& st = t.stages();
     const double total_time = st.transfer_check_s() + st.loading_s() + st.rolling_s();
     cosim::Progress progress(scene.name(), total_time, options.quiet);
@@ -179,8 +186,8 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
         const bool done = each_step && each_step();
         if (s.time_s >= next_csv || done) {
           csv->row({s.time_s, double(stage), s.rim.x, s.rim.z, s.rim.angle, s.rim.vx, s.rim.vz, s.rim.omega,
-                    s.rim.tyre_force_z_N, s.rim.rm2_Nm, s.road.force_x_N, s.road.force_y_N, s.road.force_z_N,
-                    s.road.contact_area_m2, s.energy.kinetic_J, s.energy.internal_J, s.energy.hourglass_J,
+                    s.rim.tyre_force_z_N, s.rim.rm2_Nm, ground_fx(), ground_fy(), ground_fz(),
+                    ground_area(), s.energy.kinetic_J, s.energy.internal_J, s.energy.hourglass_J,
                     s.energy.external_work_J, s.energy.balance_error()});
           next_csv = s.time_s + csv_interval;
         }
@@ -205,9 +212,33 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
     results["radial_growth_difference_percent"] =
         growth_axi != 0.0 ? 100.0 * (results["radial_growth_3d_m"].get<double>() - growth_axi) / growth_axi : 0.0;
 
-    // 4. Loading onto the road (dynamic relaxation).
+    // 4. Loading onto the road or the terrain (dynamic relaxation).
+    if (options.terrain) {
+      // The terrain's undisturbed surface is z = 0 (docs/coupling.md): lift the
+      // tyre so that its lowest point is initial_gap above it, then join the run.
+      const auto& c = scene.coupling();
+      const double gap = c.initial_gap_m() > 0 ? c.initial_gap_m() : 0.005;
+      double lowest = 1e30;
+      for (int n : model.contact_nodes) lowest = std::min(lowest, s.z[n]);
+      const double lift = gap - lowest;
+      for (double& z : s.z) z += lift;
+      s.rim.z += lift;
+      s.road.height_m = 0.0;  // heights below are measured from the terrain surface
+      s.terrain.port = options.terrain;
+      s.terrain.surface = make_contact_surface(model);
+      if (!options.quiet)
+        std::fprintf(stderr, "[%s] joining the terrain and the coupler (%zu surface facets)\n", scene.name().c_str(),
+                     s.terrain.surface.facet_count());
+      s.dt_s = options.terrain->connect(s.terrain.surface, s.dt_s);
+      s.time_stages = true;  // the exchange's share of the wall time (summary "performance")
+      coupled_from_step = s.step;
+      coupled_from_wall = wall();
+      summary["coupled_dt_s"] = s.dt_s;
+      results["coupled_time_step_s"] = s.dt_s;
+    }
     if (st.loading_s() > 0) {
-      place_road(model, s, t.road().initial_gap_m(), t.road().friction_coefficient(), t.road().penalty_scale());
+      if (!options.terrain)
+        place_road(model, s, t.road().initial_gap_m(), t.road().friction_coefficient(), t.road().penalty_scale());
       const double radius0 = free_radius(model, s);
       s.damping_per_s = st.loading_damping_per_s();
       const double load = t.rim().wheel_load_n(), ramp = t.rim().load_ramp_time_s();
@@ -229,7 +260,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
         }
         const double tol = st.loading_rest_tolerance();
         if (tol <= 0.0 || s.time_s - loading_start < ramp) return false;
-        at_rest = std::fabs(s.road.force_z_N - load) < tol * load &&
+        at_rest = std::fabs(ground_fz() - load) < tol * load &&
                   std::fabs(s.rim.tyre_force_z_N - load) < tol * load &&
                   s.energy.kinetic_J < tol * s.energy.internal_J;
         return at_rest;
@@ -240,10 +271,12 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       results["unloaded_radius_m"] = radius0;
       results["loaded_radius_m"] = loaded_radius;
       results["vertical_deflection_m"] = radius0 - loaded_radius;
-      results["contact_area_m2"] = s.road.contact_area_m2;
+      results["contact_area_m2"] = ground_area();
       results["rim_vertical_force_N"] = s.rim.tyre_force_z_N;  // the tyre holding the rim up
-      results["road_vertical_force_N"] = s.road.force_z_N;
+      results["road_vertical_force_N"] = ground_fz();
       results["wheel_load_N"] = load;
+      // Depth of the lowest tyre point below the undisturbed terrain surface z = 0.
+      if (options.terrain) results["sinkage_m"] = free_radius(model, s) - s.rim.z;
       results["kinetic_energy_after_loading_J"] = s.energy.kinetic_J;
       write_footprint(out, model, s);
       s.damping_per_s = 0.0;
@@ -280,7 +313,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       }, [&] {
         if (s.time_s < t_window) return false;
         if (!in_window) x_w = s.rim.x, a_w = s.rim.angle, in_window = true;
-        fx_sum += s.road.force_x_N, m_sum += s.rim.rm2_Nm, fz_sum += s.road.force_z_N, ++n_w;
+        fx_sum += ground_fx(), m_sum += s.rim.rm2_Nm, fz_sum += ground_fz(), ++n_w;
         h_sum += s.rim.z - s.road.height_m, w_sum += s.rim.omega;
         return false;
       });
@@ -311,12 +344,30 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
     summary["performance"] = {{"steps_per_s", wall() > 0 ? s.step / wall() : 0.0},
                               {"us_per_element_step", 1e6 * per_element_step},
                               {"core_us_per_element_step", 1e6 * per_element_step * cosim::max_threads()}};
+    if (options.terrain) {
+      const auto& st = s.stage_times;
+      const double coupled_steps = double(s.step - coupled_from_step);
+      const double compute = st.internal_forces_s + st.contact_s + st.rest_s;
+      summary["performance"]["coupled_steps"] = s.step - coupled_from_step;
+      summary["performance"]["coupled_wall_s"] = wall() - coupled_from_wall;
+      summary["performance"]["exchange_wait_s"] = st.exchange_s;
+      summary["performance"]["compute_s"] = compute;
+      summary["performance"]["compute_s_per_step"] = coupled_steps > 0 ? compute / coupled_steps : 0.0;
+    }
     csv.reset();
+    if (options.terrain) options.terrain->finish(false, "");
     write_plots(out);
     write_summary(max_steps > 0 && s.step >= max_steps ? "stopped_at_max_steps" : "completed");
     return summary;
   } catch (const std::exception& e) {
     if (csv) csv->flush();
+    if (options.terrain) {
+      try {
+        options.terrain->finish(true, e.what());
+      } catch (const std::exception&) {
+        // The peers learn of the failure by their time-out instead.
+      }
+    }
     summary["error"] = e.what();
     write_summary("failed");
     throw cosim::Error(e.what());

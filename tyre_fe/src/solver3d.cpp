@@ -199,6 +199,8 @@ double rim_update(const Model3d& m, State3d& s, const RimDrive& d) {
   }
   rim.tyre_force_x_N = fx, rim.tyre_force_z_N = fz, rim.tyre_moment_y_Nm = my;
   rim.rm2_Nm = -my;
+  rim.applied_torque_Nm = d.spin_prescribed ? 0.0 : d.drive_torque_Nm;
+  rim.wheel_load_N = d.wheel_load_N;
   const double dt = s.dt_s;
   double power = 0.0;
   // x: held or prescribed; the reaction does work.
@@ -236,18 +238,38 @@ double rim_update(const Model3d& m, State3d& s, const RimDrive& d) {
   return power;
 }
 
+// Stage 4b: loads of a terrain solver on the surface nodes (sent at the start of the step).
+double terrain_contact(State3d& s) {
+  TerrainCoupling& t = s.terrain;
+  t.port->receive(t.exchange, t.loads);
+  double power = 0.0;
+  const TerrainLoads& l = t.loads;
+  for (std::size_t k = 0; k < l.surface_nodes.size(); ++k) {
+    const int i = t.surface.node_ids[l.surface_nodes[k]];
+    s.fx[i] += l.fx_N[k], s.fy[i] += l.fy_N[k], s.fz[i] += l.fz_N[k];
+    power += l.fx_N[k] * s.vx[i] + l.fy_N[k] * s.vy[i] + l.fz_N[k] * s.vz[i];
+  }
+  ++t.exchange;
+  return power;
+}
+
 }  // namespace
 
 bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   const double dt = s.dt_s;
   const double t0 = s.time_stages ? omp_get_wtime() : 0.0;
+  // The terrain works on the surface at t_n while the element forces are computed.
+  if (s.terrain.port) s.terrain.port->send(s.terrain.exchange, s, m);
+  const double t_sent = s.time_stages ? omp_get_wtime() : 0.0;
   element_forces(m, s);
   gather_forces(m, s);
   const double t1 = s.time_stages ? omp_get_wtime() : 0.0;
   const double pressure_power = pressure_forces(m, s);
   const double t2 = s.time_stages ? omp_get_wtime() : 0.0;
-  const double contact_power = road_contact(m, s);
+  double contact_power = road_contact(m, s);
   const double t3 = s.time_stages ? omp_get_wtime() : 0.0;
+  if (s.terrain.port) contact_power += terrain_contact(s);
+  const double t3b = s.time_stages ? omp_get_wtime() : 0.0;
   // Mass-proportional damping on the free nodes (dynamic relaxation).
   double damping_power = 0.0;
   for (double p : s.element_viscous_power) damping_power += p;
@@ -290,9 +312,10 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   ++s.step;
   if (s.time_stages) {
     const double t4 = omp_get_wtime();
-    s.stage_times.internal_forces_s += t1 - t0;
+    s.stage_times.internal_forces_s += t1 - t_sent;
     s.stage_times.contact_s += t3 - t2;
-    s.stage_times.rest_s += (t2 - t1) + (t4 - t3);
+    s.stage_times.exchange_s += (t_sent - t0) + (t3b - t3);
+    s.stage_times.rest_s += (t2 - t1) + (t4 - t3b);
   }
   return finite && std::isfinite(internal);
 }

@@ -72,5 +72,10 @@ bool plot_csv(const std::string& csv, const std::string& png, int x_column,
               const std::vector<PlotSeries>& series, const std::string& title,
               const std::string& x_label, const std::string& y_label,
               const std::string& extra_commands = "");
+// A map: points at (x, y) of a CSV coloured by a third column (pressure
+// pictures), equal axis scales. Same rules as plot_csv.
+bool plot_csv_map(const std::string& csv, const std::string& png, int x_column, int y_column, int value_column,
+                  const std::string& title, const std::string& x_label, const std::string& y_label,
+                  const std::string& value_label);
 
 }  // namespace cosim

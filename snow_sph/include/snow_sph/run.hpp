@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/scene_io.hpp"
+#include "snow_sph/surface_exchange.hpp"
 
 namespace snow_sph {
 
@@ -13,6 +14,9 @@ struct RunOptions {
   std::string out_dir;
   bool quiet = false;       // no progress line
   bool write_vtk = true;    // false: skip VTK even if the scene asks (tests)
+  // Non-null: the terrain of a coupled run; it runs until the surface's owner
+  // ends the run, with the common step agreed through the exchange.
+  SurfaceExchange* exchange = nullptr;
 };
 
 // Runs the scene; returns the summary (also written to out_dir/summary.json).

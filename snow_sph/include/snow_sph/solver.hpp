@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "snow_sph/model.hpp"
+#include "snow_sph/surface_exchange.hpp"
 
 namespace snow_sph {
 
@@ -39,11 +40,22 @@ struct StepStats {
   double dt = 0.0;
   std::size_t clamped = 0;
   bool rebuilt = false;
+  bool stopped = false;  // coupled: the surface's owner ended the run during this step
 };
 
 class Solver {
  public:
   explicit Solver(Model& model);
+
+  // Couples the particles to an external surface (call before initialise()):
+  // contact with it is computed every step through `exchange`.
+  void couple(SurfaceExchange* exchange, const SurfaceContactParameters& parameters);
+  // The stable step of the penalty contact with a coupled surface (0: not coupled).
+  double surface_contact_limit_dt() const;
+  const SurfaceLoads& surface_loads() const { return surface_loads_; }
+  // Wall time spent waiting for the coupled surface and handing back the loads [s].
+  double exchange_wait_s() const { return exchange_wait_s_; }
+  bool stopped() const { return stopped_; }
 
   // Computes the initial accelerations; call once before step().
   void initialise();
@@ -71,6 +83,8 @@ class Solver {
   void update_materials(double dt);
   void compute_forces();
   void compute_contact(double dt);
+  // Exchange n with the coupled surface: contact forces into a, their power into the balance.
+  void exchange_surface(std::uint64_t exchange, double dt);
   void update_energy(double dt);
 
   Model& m_;
@@ -90,6 +104,13 @@ class Solver {
   bool any_artificial_stress_ = false;
   bool any_water_ = false;
   EnergyBalance energy_;
+  SurfaceExchange* exchange_ = nullptr;
+  SurfaceContactParameters surface_params_;
+  SurfaceLoads surface_loads_;
+  std::vector<double> a_before_;  // accelerations before the surface contact (its power)
+  double surface_power_ = 0.0;
+  double exchange_wait_s_ = 0.0;
+  bool stopped_ = false;
 };
 
 }  // namespace snow_sph

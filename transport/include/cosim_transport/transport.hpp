@@ -50,7 +50,15 @@ enum class Durability { volatile_data, transient_local };
 struct TopicQos {
   int depth = 16;  // KEEP_LAST depth of writer and reader history
   Durability durability = Durability::volatile_data;
+  // Non-empty: the topic is TopicName<T> + "_" + channel, so that one type can
+  // travel on several topics (the tyre's kinematics to the coupler, and the
+  // same type with friction from the coupler to the terrain).
+  std::string channel;
 };
+// The wire name of T's topic on `channel` (see TopicQos::channel).
+template <class T> std::string topic_name(const TopicQos& qos) {
+  return qos.channel.empty() ? std::string(TopicName<T>::value) : std::string(TopicName<T>::value) + "_" + qos.channel;
+}
 // SurfaceMesh: TRANSIENT_LOCAL keep-last 1 (late joiners get it);
 // RunControl: volatile keep-last 64; per-step topics: volatile keep-last 16.
 template <class T> TopicQos default_qos() { return {}; }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/scene_io.hpp"
+#include "tyre_fe/terrain_port.hpp"
 
 namespace tyre_fe {
 
@@ -16,6 +17,9 @@ struct RunOptions {
   bool quiet = false;
   bool write_vtk = true;
   bool mesh_only = false;  // also set by the scene's tyre.mesh_only
+  // Non-null: the tyre runs on this terrain solver instead of its rigid road
+  // (the coupled executable passes its DDS port).
+  TerrainPort* terrain = nullptr;
 };
 
 // Runs the scene; returns the summary (also written to out_dir/summary.json).

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "tyre_fe/model3d.hpp"
+#include "tyre_fe/terrain_port.hpp"
 
 namespace tyre_fe {
 
@@ -34,6 +35,8 @@ struct RimState {
   // nodes), and RM2: the moment the rim applies to the tyre (ISO y).
   double tyre_force_x_N = 0.0, tyre_force_z_N = 0.0, tyre_moment_y_Nm = 0.0;
   double rm2_Nm = 0.0;
+  // The drive of the last step: torque about y (0 if the spin is prescribed) and wheel load.
+  double applied_torque_Nm = 0.0, wheel_load_N = 0.0;
 };
 
 struct RoadState {
@@ -48,6 +51,14 @@ struct RoadState {
   // Totals of the last step: force of the road on the tyre, area in contact.
   double force_x_N = 0.0, force_y_N = 0.0, force_z_N = 0.0, contact_area_m2 = 0.0;
   double friction_dissipation_J = 0.0;
+};
+
+// A terrain solver behind a port (terrain_port.hpp): its loads replace or join the road.
+struct TerrainCoupling {
+  TerrainPort* port = nullptr;  // null: no terrain solver
+  ContactSurfaceDef surface;
+  std::uint64_t exchange = 0;   // coupled steps taken
+  TerrainLoads loads;           // of the last step
 };
 
 struct Energies {
@@ -69,6 +80,7 @@ struct Energies {
 struct StageTimes {
   double internal_forces_s = 0.0;  // element kernels + gather
   double contact_s = 0.0;          // road contact
+  double exchange_s = 0.0;         // terrain port: send + wait for the loads
   double rest_s = 0.0;             // pressure, damping, rim, update, energies
 };
 
@@ -84,6 +96,7 @@ struct State3d {
   std::vector<int> rim_nodes;
   RimState rim;
   RoadState road;
+  TerrainCoupling terrain;
   Energies energy;
   double pressure_Pa = 0.0;
   double damping_per_s = 0.0;       // mass-proportional (dynamic relaxation)
@@ -103,7 +116,9 @@ State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& c
 void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
                 double penalty_scale);
 
-// One explicit step of size s.dt_s. Returns false if a value went non-finite.
+// One explicit step of size s.dt_s. With a terrain port (s.terrain.port) the
+// surface is sent first and the terrain's loads are added to the nodal forces.
+// Returns false if a value went non-finite.
 bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
 
 // Kinetic damping (Cundall 1976; Underwood 1983): sets every velocity (nodes and

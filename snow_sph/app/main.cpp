@@ -1,11 +1,15 @@
 // snow_sph: the SPH terrain solver as a program.
 //   snow_sph SCENE --out DIR [--set field.path=value ...] [--check] [--quiet]
+//   snow_sph SCENE --out DIR --coupled --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR]
+// (coupled: the terrain of a coupled run; docs/coupling.md)
 #include <cstdio>
 #include <exception>
 
 #include <CLI/CLI.hpp>
 
+#include "coupler/cli.hpp"
 #include "cosim/error.hpp"
+#include "dds_surface_exchange.hpp"
 #include "cosim/interrupt.hpp"
 #include "snow_sph/run.hpp"
 #include "snow_sph/scene.hpp"
@@ -21,6 +25,8 @@ int main(int argc, char** argv) {
   app.add_flag("--check", check, "validate the scene and exit");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
+  coupler::CouplingCli coupling;
+  coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
   try {
@@ -30,6 +36,20 @@ int main(int argc, char** argv) {
     report.throw_if_failed();
     if (check) {
       std::printf("%s: ok\n", scene_file.c_str());
+      return 0;
+    }
+    const std::string terrain = scene->message.coupling().terrain();
+    if (!coupling.coupled && scene->message.has_tyre() && scene->message.has_sph() && terrain != "rigid_road")
+      throw cosim::Error(scene_file + ": this scene couples the tyre to an SPH terrain; run it with `cosim run` "
+                         "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
+    if (coupling.coupled) {
+      if (!scene->message.has_tyre()) throw cosim::Error(scene_file + ": a coupled terrain needs a scene with a `tyre`");
+      coupler::Session session(coupling.session(coupler::tp::Role::terrain, scene->message));
+      snow_sph::DdsSurfaceExchange exchange(session);
+      snow_sph::RunOptions options{out_dir, quiet, !no_vtk};
+      options.exchange = &exchange;
+      const auto summary = snow_sph::run_scene(*scene, options);
+      std::printf("%s\n", summary["results"].dump(2).c_str());
       return 0;
     }
     const auto summary = snow_sph::run_scene(*scene, {out_dir, quiet, !no_vtk});

@@ -1,14 +1,18 @@
 // tyre_fe: the explicit FE tyre solver as a program.
 //   tyre_fe SCENE --out DIR [--set field.path=value ...] [--check] [--mesh-only] [--quiet] [--no-vtk]
+//   tyre_fe SCENE --out DIR --coupled --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR]
+// (coupled: on the terrain solver of a coupled run, through the coupler; docs/coupling.md)
 #include <cstdio>
 #include <exception>
 
 #include <CLI/CLI.hpp>
 
+#include "coupler/cli.hpp"
 #include "cosim/error.hpp"
 #include "cosim/interrupt.hpp"
 #include "tyre_fe/run.hpp"
 #include "tyre_fe/scene.hpp"
+#include "dds_terrain_port.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"tyre_fe: explicit FE tyre (axisymmetric inflation, 3D pitch model, rigid road)"};
@@ -22,6 +26,8 @@ int main(int argc, char** argv) {
   app.add_flag("--mesh-only", mesh_only, "write the meshes and their statistics, do not solve");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
+  coupler::CouplingCli coupling;
+  coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
   try {
@@ -32,6 +38,20 @@ int main(int argc, char** argv) {
     report.throw_if_failed();
     if (check) {
       std::printf("%s: ok\n", scene_file.c_str());
+      return 0;
+    }
+    const std::string terrain = scene->message.coupling().terrain();
+    if (!coupling.coupled && scene->message.has_tyre() && scene->message.has_sph() && terrain != "rigid_road")
+      throw cosim::Error(scene_file + ": this scene couples the tyre to an SPH terrain; run it with `cosim run` "
+                         "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
+    if (coupling.coupled) {
+      const auto& c = scene->message.coupling();
+      coupler::Session session(coupling.session(coupler::tp::Role::tyre, scene->message));
+      tyre_fe::DdsTerrainPort port(session, c.contact_band_m() > 0 ? c.contact_band_m() : 0.12);
+      tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
+      options.terrain = &port;
+      const auto summary = tyre_fe::run_tyre_scene(*scene, options);
+      std::printf("%s\n", summary["results"].dump(2).c_str());
       return 0;
     }
     const auto summary = tyre_fe::run_tyre_scene(*scene, {out_dir, quiet, !no_vtk, mesh_only});

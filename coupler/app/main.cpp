@@ -1,0 +1,41 @@
+// coupler: the synchronising hub of a coupled run (tyre_fe + terrain over DDS).
+//   coupler SCENE --out DIR --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...]
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "coupler/cli.hpp"
+#include "cosim/error.hpp"
+#include "cosim/interrupt.hpp"
+#include "hub.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"coupler: keeps tyre_fe and the terrain in step, decides friction, decomposes the contact force"};
+  std::string scene_file, out_dir = "out";
+  std::vector<std::string> sets;
+  bool quiet = false;
+  app.add_option("scene", scene_file, "scene file (.textproto)")->required();
+  app.add_option("--out", out_dir, "output folder");
+  app.add_option("--set", sets, "override a scene field: field.path=value");
+  app.add_flag("--quiet", quiet, "no progress line");
+  coupler::CouplingCli coupling;
+  coupling.add_to(app, false);
+  CLI11_PARSE(app, argc, argv);
+  cosim::install_interrupt_handler();
+  try {
+    const auto scene = cosim::load_scene(scene_file, sets);
+    if (!scene->message.has_tyre() || !scene->message.has_sph())
+      throw cosim::Error(scene_file + ": the coupler needs a scene with a `tyre` and an `sph` terrain");
+    coupler::Session session(coupling.session(coupler::tp::Role::coupler, scene->message));
+    const auto summary = coupler::run_hub(session, *scene, {out_dir, quiet});
+    std::printf("%s\n", summary["results"].dump(2).c_str());
+    return 0;
+  } catch (const cosim::Error& e) {
+    std::fprintf(stderr, "coupler: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "coupler: internal error: %s\n", e.what());
+    return 3;
+  }
+}

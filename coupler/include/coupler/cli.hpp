@@ -1,0 +1,62 @@
+#pragma once
+// The command-line options every program of a coupled run shares (tyre_fe,
+// snow_sph, coupler): vendor, run id, domain and discovery. `cosim run` passes
+// them to the processes it starts; by hand, on separate hosts, give each
+// program the same --run-id and --domain and point --peer at the other hosts
+// (README, "Running on several machines").
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "coupler/session.hpp"
+#include "cosim/scene_io.hpp"
+
+namespace coupler {
+
+struct CouplingCli {
+  bool coupled = false;
+  std::string vendor = "cyclone";
+  std::string run_id;  // hexadecimal
+  int domain = -1;     // -1: the scene's coupling.domain_id
+  std::string interface = "lo";
+  std::vector<std::string> peers;
+  bool multicast = false;
+
+  void add_to(CLI::App& app, bool with_coupled_flag) {
+    if (with_coupled_flag)
+      app.add_flag("--coupled", coupled, "run as a participant of a coupled run (DDS) instead of alone");
+    app.add_option("--dds", vendor, "DDS vendor of this process: fast or cyclone");
+    app.add_option("--run-id", run_id, "run id shared by the processes of one run (hexadecimal)");
+    app.add_option("--domain", domain, "DDS domain id (default: the scene's coupling.domain_id)");
+    app.add_option("--interface", interface, "network interface or IPv4 address to use (default lo)");
+    app.add_option("--peer", peers, "IPv4 address of another host of the run (unicast discovery; repeat)");
+    app.add_flag("--multicast", multicast, "multicast discovery instead of --peer addresses");
+  }
+
+  // Throws cosim::Error for a bad vendor or run id.
+  SessionOptions session(tp::Role self, const cosim::scene::Scene& scene) const {
+    SessionOptions o;
+    o.vendor = tp::parse_vendor(vendor);
+    o.self = self;
+    std::size_t used = 0;
+    try {
+      o.run_id = std::stoull(run_id, &used, 16);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (run_id.empty() || used != run_id.size() || o.run_id == 0)
+      throw cosim::Error("--run-id '" + run_id + "': give the run's id as a non-zero hexadecimal number "
+                         "(the same for every process of the run)");
+    const auto& c = scene.coupling();
+    o.transport.domain_id = domain >= 0 ? domain : c.domain_id();
+    o.transport.network_interface = interface;
+    if (!peers.empty()) o.transport.static_peers = peers;
+    o.transport.multicast = multicast;
+    if (c.step_timeout_s() > 0) o.step_timeout_s = c.step_timeout_s();
+    if (c.start_timeout_s() > 0) o.start_timeout_s = c.start_timeout_s();
+    return o;
+  }
+};
+
+}  // namespace coupler

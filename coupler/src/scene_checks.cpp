@@ -1,0 +1,58 @@
+#include "coupler/scene_checks.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "coupler/friction.hpp"
+#include "cosim/error.hpp"
+
+namespace coupler {
+
+namespace {
+std::string num(double v) { return std::to_string(v); }
+}  // namespace
+
+void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::ValidationReport& r) {
+  const auto& scene = loaded.message;
+  if (!scene.has_coupling()) return;
+  const auto& c = scene.coupling();
+  const auto loc = loaded.locator().child("coupling");
+  if (c.terrain().empty())
+    r.fail(loc.where("terrain"), "name the terrain: a material file (e.g. \"../materials/snow_soft.textproto\") or \"rigid_road\"");
+  if (!scene.has_tyre()) r.fail(loc.where("terrain"), "a coupled scene needs a `tyre`");
+  if (c.terrain() != "rigid_road" && !c.terrain().empty() && !scene.has_sph())
+    r.fail(loc.where("terrain"), "terrain '" + c.terrain() + "' needs an `sph` section with the terrain's blocks");
+  for (const char* f : {"contact_band_m", "initial_gap_m", "step_timeout_s", "start_timeout_s", "rolling_radius_m",
+                        "base_friction_coefficient", "sipe_equivalent_friction_coefficient",
+                        "contact_stiffness_scale", "average_last_s"}) {
+    const auto* field = c.GetDescriptor()->FindFieldByName(f);
+    const double v = c.GetReflection()->GetDouble(c, field);
+    if (!(v >= 0) || !std::isfinite(v)) r.fail(loc.where(f), "must be >= 0 (0: the default), got " + num(v));
+  }
+  if (c.step_timeout_s() > 5.0)
+    r.fail(loc.where("step_timeout_s"), "must be at most 5 s (a dead process must end the run within 5 s), got " +
+                                            num(c.step_timeout_s()));
+  if (c.domain_id() < 0 || c.domain_id() > 232) r.fail(loc.where("domain_id"), "must be in 0..232");
+  for (int i = 0; i < c.tag_friction_size(); ++i) {
+    try {
+      facet_tag_from_name(c.tag_friction(i).tag());
+    } catch (const cosim::Error& e) {
+      r.fail(loc.child("tag_friction", i).where("tag"), e.what());
+    }
+    if (!(c.tag_friction(i).friction_coefficient() >= 0))
+      r.fail(loc.child("tag_friction", i).where("friction_coefficient"), "must be >= 0");
+  }
+  if (c.terrain() == "rigid_road" || !scene.has_sph()) return;
+  // The terrain's undisturbed surface is the plane z = 0 (docs/coupling.md).
+  double top = -1e30;
+  for (const auto& b : scene.sph().blocks()) top = std::max(top, b.region().max().z());
+  if (std::fabs(top) > 1e-9)
+    r.fail(loaded.locator().child("sph").child("blocks", 0).child("region").child("max").where("z"),
+           "the terrain surface of a coupled scene is the plane z = 0: the highest block must end at z = 0 (got " +
+               num(top) + ")");
+  if (scene.tyre().stages().loading_s() <= 0)
+    r.fail(loaded.locator().child("tyre").child("stages").where("loading_s"),
+           "a coupled run loads the tyre onto the terrain: give loading_s > 0");
+}
+
+}  // namespace coupler

@@ -1,0 +1,106 @@
+#include "coupler/session.hpp"
+
+namespace coupler {
+
+namespace {
+std::chrono::milliseconds ms(double s) { return std::chrono::milliseconds(static_cast<long long>(1000.0 * s)); }
+}  // namespace
+
+Session::Session(const SessionOptions& options)
+    : options_(options),
+      participant_(tp::make_participant(options.vendor, options.transport)),
+      control_out_(participant_->create_writer<tp::RunControl>()),
+      control_in_(participant_->create_reader<tp::RunControl>()),
+      control_filter_(options.run_id) {
+  if (options.run_id == 0) throw cosim::Error("a coupled run needs a non-zero run id (--run-id)");
+}
+
+Session::~Session() = default;
+
+tp::HandshakeResult Session::join(const std::vector<tp::Role>& peers, double proposed_dt_s,
+                                  const std::vector<tp::Endpoint*>& data_endpoints) {
+  tp::HandshakeOptions h;
+  h.run_id = options_.run_id;
+  h.self = options_.self;
+  h.peers = peers;
+  h.proposed_time_step_s = proposed_dt_s;
+  h.timeout = ms(options_.start_timeout_s);
+  h.data_endpoints = data_endpoints;
+  tp::HandshakeResult r = tp::handshake(*control_out_, *control_in_, h);
+  pending_ = r.other_messages;
+  return r;
+}
+
+double Session::wait_for_start(const tp::HandshakeResult& joined) {
+  (void)joined;  // its other_messages are in pending_
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + ms(options_.start_timeout_s);
+  while (true) {
+    for (const auto& m : pending_) {
+      if (m.kind == tp::ControlKind::start && m.sender == tp::Role::coupler) {
+        pending_.clear();
+        return m.agreed_time_step_s;
+      }
+      if (m.kind == tp::ControlKind::failure)
+        throw cosim::Error(std::string("the ") + tp::role_name(m.sender) + " failed before the start: " + m.reason);
+      if (m.kind == tp::ControlKind::stop)
+        throw cosim::Error(std::string("the ") + tp::role_name(m.sender) + " stopped the run before the start: " + m.reason);
+    }
+    pending_.clear();
+    if (Clock::now() > deadline)
+      throw cosim::Error("no START from the coupler within " + std::to_string(options_.start_timeout_s) + " s");
+    tp::RunControl m;
+    if (tp::wait_for_accepted(*control_in_, control_filter_, m, std::chrono::microseconds(100000)) &&
+        m.sender != options_.self && (m.addressee == tp::Role::any || m.addressee == options_.self))
+      pending_.push_back(m);
+  }
+}
+
+void Session::announce_start(double agreed_dt_s, const std::string& note) {
+  send_control(tp::ControlKind::start, 0, note, agreed_dt_s);
+}
+
+bool Session::control_says_stop(std::string& reason) {
+  std::vector<tp::RunControl> messages;
+  tp::take_accepted(*control_in_, control_filter_, messages);
+  for (const auto& m : messages) {
+    if (m.sender == options_.self) continue;
+    if (m.addressee != tp::Role::any && m.addressee != options_.self) continue;
+    if (m.kind == tp::ControlKind::failure)
+      throw cosim::Error(std::string("the ") + tp::role_name(m.sender) + " failed at step " +
+                         std::to_string(m.header.step) + ": " + m.reason);
+    if (m.kind == tp::ControlKind::stop) {
+      reason = m.reason;
+      return true;
+    }
+  }
+  return false;
+}
+
+void Session::send_control(tp::ControlKind kind, std::uint64_t step, const std::string& reason, double agreed_dt_s) {
+  tp::RunControl m;
+  m.header = {options_.run_id, step, 0.0};
+  m.kind = kind;
+  m.sender = options_.self;
+  m.addressee = tp::Role::any;
+  m.agreed_time_step_s = agreed_dt_s;
+  m.reason = reason;
+  control_out_->write(m);
+}
+
+void Session::send_stop(std::uint64_t step, const std::string& reason) {
+  send_control(tp::ControlKind::stop, step, reason, 0.0);
+  control_out_->wait_for_acknowledgments(std::chrono::milliseconds(2000));
+}
+
+void Session::send_failure(std::uint64_t step, const std::string& reason) {
+  send_control(tp::ControlKind::failure, step, reason, 0.0);
+  control_out_->wait_for_acknowledgments(std::chrono::milliseconds(1000));
+}
+
+void Session::count_rejections(const tp::SampleFilter& filter) {
+  rejected_run_id_ += filter.rejected_run_id();
+  rejected_step_ += filter.rejected_step();
+}
+
+}  // namespace coupler

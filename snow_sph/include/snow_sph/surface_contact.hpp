@@ -1,0 +1,72 @@
+#pragma once
+// Penalty contact between the SPH particles and a deformable surface owned by
+// another solver (the tyre's outer surface, sent every step): node-to-surface
+// contact with the particles as the slave points (Belytschko, Liu & Moran 2000,
+// ch. 10, penalty method), Coulomb friction per facet.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace snow_sph {
+
+// The surface another solver owns (world frame, SI): nodes and quad facets.
+// Facet nodes are ordered so that the right-hand normal (x2 - x0) x (x3 - x1)
+// points OUT of the body that owns the surface (towards the terrain).
+struct ContactSurface {
+  std::vector<double> x, y, z;              // node positions [m]
+  std::vector<double> vx, vy, vz;           // node velocities [m/s]
+  std::vector<std::uint32_t> facet_nodes;   // 4 node indices per facet
+  std::vector<double> friction_coefficient; // one per facet (Coulomb mu >= 0)
+  std::size_t facet_count() const { return facet_nodes.size() / 4; }
+};
+
+// What the contact did in one step.
+struct SurfaceLoads {
+  // Per surface node: force ON THE SURFACE (the reaction of the particles) [N].
+  std::vector<double> node_fx, node_fy, node_fz;
+  // Per facet: normal force on the surface, compressive > 0 (the particles push
+  // along -n) [N]; tangential (friction) force on the surface [N]; the facet's
+  // area if it carries contact, else 0 [m^2]; pressure = normal force / area [Pa].
+  std::vector<double> facet_normal_force_N, facet_tangential_x_N, facet_tangential_y_N, facet_tangential_z_N;
+  std::vector<double> facet_contact_area_m2, facet_pressure_Pa;
+  std::vector<std::uint32_t> particles_in_contact;  // per facet
+  double total_fx_N = 0, total_fy_N = 0, total_fz_N = 0;  // force on the surface
+  double friction_dissipation_J = 0;  // this step: sum ft vt dt
+  double damping_dissipation_J = 0;   // this step: contact damping
+  double elastic_energy_J = 0;        // in the penalty springs now: sum k delta^2 / 2
+};
+
+struct SurfaceContactParameters {
+  double particle_radius_m = 0;  // half the particle spacing: contact below this distance
+  double stiffness_N_per_m = 0;  // penalty stiffness per particle
+  double damping_ratio = 0.2;    // of critical, sqrt(k m), only while approaching
+  double max_depth_m = 0;        // particles deeper than this behind a facet are ignored (0: 2 radius)
+};
+
+// For every particle i < n_particles, its contacts with the facets near it:
+//  - face contacts: every facet whose plane the particle penetrates, gap
+//    d = (x_i - centroid) . n below the radius and above -max_depth, with its
+//    projection inside the facet (the quad as triangles 0-1-2 and 0-2-3). All
+//    are summed, so that in a concave corner (a groove's floor and wall) the
+//    force is the gradient of one potential;
+//  - otherwise an edge or corner contact with the closest point c of the
+//    nearest facet (Ericson, Real-Time Collision Detection 2005, 5.1.5), along
+//    the line from c to the particle (a convex ridge pushes away from itself).
+// Each contact: penetration delta = radius - d (at most one diameter) gives
+// fn = max(0, k delta - c_d v_n) along the normal (v_n: normal velocity of the
+// particle relative to the surface at the contact point; damping only while
+// approaching), and Coulomb friction ft = min(mu fn, m vt / (4 dt)) against the
+// relative tangential velocity (stability note in surface_contact.cpp).
+// The force on the particle is added to (ax, ay, az)[i] / mass[i]; the opposite
+// force goes to the facet's nodes with the bilinear shape functions at the
+// contact point (linear along an edge), so momentum is conserved exactly.
+// `loads` is overwritten. The result does not depend on the number of OpenMP threads.
+void surface_contact(const ContactSurface& surface, const SurfaceContactParameters& params,
+                     std::size_t n_particles, const double* x, const double* y, const double* z,
+                     const double* vx, const double* vy, const double* vz, const double* mass,
+                     double dt, double* ax, double* ay, double* az, SurfaceLoads& loads);
+
+// Central-difference limit of a penalty spring on the lightest particle: 2 sqrt(m / k).
+double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N_per_m);
+
+}  // namespace snow_sph

@@ -1,0 +1,32 @@
+#pragma once
+// The terrain's side of a coupling with a solver that owns a contact surface
+// (the tyre), without any transport: the solver asks the port for the surface
+// of each step and hands back the loads it computed (surface_contact.hpp).
+// What is behind the port (DDS in the coupled executable, a test double in
+// tests) is not the solver's business.
+//
+// Timing: exchange n belongs to time t_n. initialise() makes exchange 0 with
+// the particles at t_0; step k (k = 1, 2, ...) makes exchange k with the
+// particles at t_k, after the particle forces and before the kick that uses
+// them, so the contact forces of both sides belong to the same instant.
+#include <cstdint>
+#include <string>
+
+#include "snow_sph/surface_contact.hpp"
+
+namespace snow_sph {
+
+class SurfaceExchange {
+ public:
+  virtual ~SurfaceExchange() = default;
+  // Once, before initialise(): this solver's stable step in, the common step out.
+  virtual double connect(double proposed_dt_s) = 0;
+  // The surface at exchange n; null when the owner of the surface ended the run.
+  virtual const ContactSurface* surface(std::uint64_t exchange) = 0;
+  // The loads computed at exchange n.
+  virtual void send_loads(std::uint64_t exchange, const SurfaceLoads& loads) = 0;
+  // End of the run: normal stop (failed = false) or failure with a reason.
+  virtual void finish(bool failed, const std::string& reason) = 0;
+};
+
+}  // namespace snow_sph

@@ -1,0 +1,341 @@
+#include "snow_sph/surface_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "cosim/error.hpp"
+#include "cosim/parallel.hpp"
+
+namespace snow_sph {
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+constexpr double kStickDamping = 0.25;  // friction regulariser: c_t = kStickDamping m / dt
+
+// Closest point to p on triangle abc and its barycentric weights (Ericson,
+// Real-Time Collision Detection, 2005, 5.1.5: Voronoi regions of the vertices,
+// edges and face).
+V3 closest_on_triangle(const V3& p, const V3& a, const V3& b, const V3& c, double w[3]) {
+  const V3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return w[0] = 1, w[1] = 0, w[2] = 0, a;
+  const V3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return w[0] = 0, w[1] = 1, w[2] = 0, b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return w[0] = 1 - v, w[1] = v, w[2] = 0, V3(a + v * ab);
+  }
+  const V3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return w[0] = 0, w[1] = 0, w[2] = 1, c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    return w[0] = 1 - t, w[1] = 0, w[2] = t, V3(a + t * ac);
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return w[0] = 0, w[1] = 1 - t, w[2] = t, V3(b + t * (c - b));
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, t = vc * denom;
+  return w[0] = 1 - v - t, w[1] = v, w[2] = t, V3(a + ab * v + ac * t);
+}
+
+// Facets binned in a uniform grid over their bounding boxes grown by the reach.
+struct FacetGrid {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, cell = 1.0;
+  int dims[3] = {1, 1, 1};
+  std::vector<std::uint32_t> begin, entries;  // CSR: cell -> facets
+
+  int index(int i, int j, int k) const { return (k * dims[1] + j) * dims[0] + i; }
+  bool cell_of(const V3& p, int c[3]) const {
+    for (int a = 0; a < 3; ++a) {
+      if (p[a] < lo[a] || p[a] > hi[a]) return false;
+      c[a] = std::min(dims[a] - 1, static_cast<int>((p[a] - lo[a]) / cell));
+    }
+    return true;
+  }
+};
+
+FacetGrid bin_facets(const ContactSurface& s, double reach) {
+  FacetGrid g;
+  const std::size_t nf = s.facet_count();
+  std::vector<double> box(6 * nf);
+  double extent = 0.0;
+  for (int a = 0; a < 3; ++a) g.lo[a] = 1e300, g.hi[a] = -1e300;
+  for (std::size_t f = 0; f < nf; ++f) {
+    double* b = &box[6 * f];
+    for (int a = 0; a < 3; ++a) b[a] = 1e300, b[3 + a] = -1e300;
+    for (int q = 0; q < 4; ++q) {
+      const std::uint32_t n = s.facet_nodes[4 * f + q];
+      const double p[3] = {s.x[n], s.y[n], s.z[n]};
+      for (int a = 0; a < 3; ++a) b[a] = std::min(b[a], p[a] - reach), b[3 + a] = std::max(b[3 + a], p[a] + reach);
+    }
+    for (int a = 0; a < 3; ++a) {
+      extent = std::max(extent, b[3 + a] - b[a]);
+      g.lo[a] = std::min(g.lo[a], b[a]), g.hi[a] = std::max(g.hi[a], b[3 + a]);
+    }
+  }
+  // About one grown facet per cell, at most ~4 million cells.
+  g.cell = std::max(extent, 1e-6);
+  while (true) {
+    long total = 1;
+    for (int a = 0; a < 3; ++a) g.dims[a] = std::max(1, static_cast<int>(std::ceil((g.hi[a] - g.lo[a]) / g.cell)));
+    total = static_cast<long>(g.dims[0]) * g.dims[1] * g.dims[2];
+    if (total <= 4000000) break;
+    g.cell *= 1.5;
+  }
+  const std::size_t cells = static_cast<std::size_t>(g.dims[0]) * g.dims[1] * g.dims[2];
+  std::vector<std::uint32_t> count(cells + 1, 0);
+  auto each_cell = [&](std::size_t f, auto&& visit) {
+    int c0[3], c1[3];
+    for (int a = 0; a < 3; ++a) {
+      c0[a] = std::clamp(static_cast<int>((box[6 * f + a] - g.lo[a]) / g.cell), 0, g.dims[a] - 1);
+      c1[a] = std::clamp(static_cast<int>((box[6 * f + 3 + a] - g.lo[a]) / g.cell), 0, g.dims[a] - 1);
+    }
+    for (int k = c0[2]; k <= c1[2]; ++k)
+      for (int j = c0[1]; j <= c1[1]; ++j)
+        for (int i = c0[0]; i <= c1[0]; ++i) visit(g.index(i, j, k));
+  };
+  for (std::size_t f = 0; f < nf; ++f) each_cell(f, [&](int c) { ++count[c + 1]; });
+  for (std::size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
+  g.begin = count;
+  g.entries.resize(count[cells]);
+  for (std::size_t f = 0; f < nf; ++f) each_cell(f, [&](int c) { g.entries[count[c]++] = static_cast<std::uint32_t>(f); });
+  return g;
+}
+
+// The contacts of one particle (at most kMaxContacts facets), kept per
+// particle so that the sums are serial and independent of the thread count.
+constexpr int kMaxContacts = 6;
+struct Contact {
+  std::int32_t facet = -1;
+  double w[4] = {0, 0, 0, 0};
+  double f[3] = {0, 0, 0};  // force on the particle
+  double fn = 0.0, ft[3] = {0, 0, 0};
+  double friction_J = 0.0, damping_J = 0.0, elastic_J = 0.0;
+};
+struct ParticleContacts {
+  int count = 0;
+  Contact c[kMaxContacts];
+};
+
+// Bilinear shape functions of the quad at the point q of its surface (inverse
+// isoparametric map by Gauss-Newton from the centre; exact for a parallelogram
+// after one iteration): the weights with which a point force at q is shared by
+// the four nodes, consistent with the tyre's bilinear facet.
+void bilinear_weights(const V3& q, const V3 x[4], double w[4]) {
+  static const double xi_a[4] = {-1, 1, 1, -1}, eta_a[4] = {-1, -1, 1, 1};
+  double xi = 0.0, eta = 0.0;
+  for (int it = 0; it < 4; ++it) {
+    V3 r = -q, dxi = V3::Zero(), deta = V3::Zero();
+    for (int a = 0; a < 4; ++a) {
+      r += 0.25 * (1 + xi_a[a] * xi) * (1 + eta_a[a] * eta) * x[a];
+      dxi += 0.25 * xi_a[a] * (1 + eta_a[a] * eta) * x[a];
+      deta += 0.25 * eta_a[a] * (1 + xi_a[a] * xi) * x[a];
+    }
+    const double a11 = dxi.dot(dxi), a12 = dxi.dot(deta), a22 = deta.dot(deta);
+    const double b1 = -dxi.dot(r), b2 = -deta.dot(r), det = a11 * a22 - a12 * a12;
+    if (!(det > 0)) break;
+    xi += (a22 * b1 - a12 * b2) / det, eta += (a11 * b2 - a12 * b1) / det;
+  }
+  xi = std::clamp(xi, -1.0, 1.0), eta = std::clamp(eta, -1.0, 1.0);
+  for (int a = 0; a < 4; ++a) w[a] = 0.25 * (1 + xi_a[a] * xi) * (1 + eta_a[a] * eta);
+}
+
+// Barycentric coordinates of q (in the plane of abc) in triangle abc; true if inside.
+bool inside_triangle(const V3& q, const V3& a, const V3& b, const V3& c, double w[3]) {
+  const V3 v0 = b - a, v1 = c - a, v2 = q - a;
+  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+  const double den = d00 * d11 - d01 * d01;
+  if (!(den > 0)) return false;
+  const double v = (d11 * d20 - d01 * d21) / den, t = (d00 * d21 - d01 * d20) / den;
+  w[0] = 1.0 - v - t, w[1] = v, w[2] = t;
+  return w[0] >= 0 && v >= 0 && t >= 0;
+}
+
+}  // namespace
+
+double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N_per_m) {
+  if (!(stiffness_N_per_m > 0)) return std::numeric_limits<double>::infinity();
+  return 2.0 * std::sqrt(min_particle_mass_kg / stiffness_N_per_m);
+}
+
+void surface_contact(const ContactSurface& s, const SurfaceContactParameters& params, std::size_t n_particles,
+                     const double* x, const double* y, const double* z, const double* vx, const double* vy,
+                     const double* vz, const double* mass, double dt, double* ax, double* ay, double* az,
+                     SurfaceLoads& loads) {
+  const std::size_t nn = s.x.size(), nf = s.facet_count();
+  if (s.facet_nodes.size() != 4 * nf || s.friction_coefficient.size() != nf || s.y.size() != nn ||
+      s.z.size() != nn || s.vx.size() != nn || s.vy.size() != nn || s.vz.size() != nn)
+    throw cosim::Error("contact surface: node or facet arrays differ in length");
+  for (std::uint32_t n : s.facet_nodes)
+    if (n >= nn) throw cosim::Error("contact surface: facet node " + std::to_string(n) + " out of range");
+  loads = SurfaceLoads{};
+  loads.node_fx.assign(nn, 0.0), loads.node_fy.assign(nn, 0.0), loads.node_fz.assign(nn, 0.0);
+  for (auto* v : {&loads.facet_normal_force_N, &loads.facet_tangential_x_N, &loads.facet_tangential_y_N,
+                  &loads.facet_tangential_z_N, &loads.facet_contact_area_m2, &loads.facet_pressure_Pa})
+    v->assign(nf, 0.0);
+  loads.particles_in_contact.assign(nf, 0);
+  if (nf == 0 || n_particles == 0) return;
+
+  const double radius = params.particle_radius_m, k = params.stiffness_N_per_m;
+  const double depth = params.max_depth_m > 0 ? params.max_depth_m : 2.0 * radius;
+  const double reach = std::max(radius, depth);
+  // Unit outward normals and areas ((x2 - x0) x (x3 - x1) / 2, exact for a planar quad).
+  std::vector<V3> normal(nf);
+  std::vector<double> area(nf);
+  auto node = [&](std::uint32_t n) { return V3(s.x[n], s.y[n], s.z[n]); };
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t* q = &s.facet_nodes[4 * f];
+    const V3 cross = (node(q[2]) - node(q[0])).cross(node(q[3]) - node(q[1]));
+    area[f] = 0.5 * cross.norm();
+    normal[f] = area[f] > 0 ? V3(cross / (2.0 * area[f])) : V3::Zero();
+  }
+  const FacetGrid grid = bin_facets(s, reach);
+
+  std::vector<ParticleContacts> contacts(n_particles);
+  cosim::parallel_for("sph.surface_contact", n_particles, [&](std::size_t i) {
+    const V3 p(x[i], y[i], z[i]);
+    int cell_ijk[3];
+    if (!grid.cell_of(p, cell_ijk)) return;
+    const int cell = grid.index(cell_ijk[0], cell_ijk[1], cell_ijk[2]);
+    const double m = mass[i];
+    const V3 vp(vx[i], vy[i], vz[i]);
+    ParticleContacts& pc = contacts[i];
+    // Penalty force of one facet along `n` with penetration `delta`, friction
+    // against the facet's velocity at the contact point (weights w).
+    auto add_contact = [&](std::int32_t f, const V3& n, double delta, const double w[4]) {
+      if (pc.count == kMaxContacts) return;
+      const std::uint32_t* q = &s.facet_nodes[4 * f];
+      V3 vs = V3::Zero();
+      for (int a = 0; a < 4; ++a) vs += w[a] * V3(s.vx[q[a]], s.vy[q[a]], s.vz[q[a]]);
+      const V3 rel = vp - vs;
+      const double vn = rel.dot(n);
+      // A particle pushed past the facet by more than its diameter (tunnelled)
+      // is pushed back with the force of one diameter's penetration.
+      delta = std::min(delta, 2.0 * radius);
+      const double c_d = 2.0 * params.damping_ratio * std::sqrt(k * m);
+      const double damping = vn < 0.0 ? -c_d * vn : 0.0;
+      const double fn = std::max(0.0, k * delta + damping);
+      const V3 vt_vec = rel - vn * n;
+      const double vt = vt_vec.norm();
+      V3 ft = V3::Zero();
+      double ft_mag = 0.0;
+      if (vt > 0.0) {
+        // Coulomb friction regularised by a tangential damper c_t = m / (4 dt): a
+        // sticking particle matches the surface's velocity within about four
+        // steps. The damper couples the particle to the surface nodes, whose
+        // mass the terrain does not know; its explicit update is stable while
+        // c_t dt (1/m + n/M) < 2 for n such particles on a node of mass M, i.e.
+        // n m < 7 M (m / dt, stopping the slip in one step, went unstable in the
+        // coupled torque scene as soon as n m > M).
+        ft_mag = std::min(s.friction_coefficient[f] * fn, kStickDamping * m * vt / dt);
+        ft = -ft_mag / vt * vt_vec;
+      }
+      const V3 force = fn * n + ft;
+      Contact& ct = pc.c[pc.count++];
+      ct.facet = f;
+      for (int a = 0; a < 4; ++a) ct.w[a] = w[a];
+      for (int a = 0; a < 3; ++a) ct.f[a] = force[a], ct.ft[a] = ft[a];
+      ct.fn = fn;
+      ct.friction_J = ft_mag * vt * dt;
+      ct.damping_J = std::min(damping, fn) * std::max(-vn, 0.0) * dt;
+      ct.elastic_J = 0.5 * k * delta * delta;
+    };
+    // Face contacts: every facet whose plane the particle penetrates with its
+    // projection inside the facet. Summing them (not only the closest) keeps
+    // the force a gradient of one potential in concave corners (a groove's
+    // floor and walls), where switching between closest facets pumped energy.
+    double best = std::numeric_limits<double>::infinity();
+    std::int32_t best_facet = -1;
+    double best_w[4] = {0, 0, 0, 0};
+    V3 best_point = V3::Zero();
+    for (std::uint32_t e = grid.begin[cell]; e < grid.begin[cell + 1]; ++e) {
+      const std::uint32_t f = grid.entries[e];
+      if (area[f] <= 0) continue;
+      const std::uint32_t* q = &s.facet_nodes[4 * f];
+      const V3 a = node(q[0]), b = node(q[1]), cc = node(q[2]), d = node(q[3]);
+      const V3& n = normal[f];
+      const double gap = (p - (a + b + cc + d) * 0.25).dot(n);
+      if (gap < radius && gap > -depth) {
+        const V3 proj = p - gap * n;
+        double w3[3];
+        double w[4] = {0, 0, 0, 0};
+        bool inside = inside_triangle(proj, a, b, cc, w3);
+        if (inside) {
+          w[0] = w3[0], w[1] = w3[1], w[2] = w3[2];
+        } else if (inside_triangle(proj, a, cc, d, w3)) {
+          inside = true, w[0] = w3[0], w[2] = w3[1], w[3] = w3[2];
+        }
+        if (inside) {
+          const V3 corners[4] = {a, b, cc, d};
+          bilinear_weights(proj, corners, w);
+          add_contact(static_cast<std::int32_t>(f), n, radius - gap, w);
+          continue;
+        }
+      }
+      // Otherwise the closest point, for the edge and corner fall-back below.
+      double w1[3], w2[3];
+      const V3 p1 = closest_on_triangle(p, a, b, cc, w1);
+      const V3 p2 = closest_on_triangle(p, a, cc, d, w2);
+      const double d1 = (p - p1).squaredNorm(), d2 = (p - p2).squaredNorm();
+      if (std::min(d1, d2) < best) {
+        best = std::min(d1, d2), best_facet = static_cast<std::int32_t>(f);
+        if (d1 <= d2) best_w[0] = w1[0], best_w[1] = w1[1], best_w[2] = w1[2], best_w[3] = 0, best_point = p1;
+        else best_w[0] = w2[0], best_w[1] = 0, best_w[2] = w2[1], best_w[3] = w2[2], best_point = p2;
+      }
+    }
+    // Edge and corner contact (a convex ridge, e.g. a block's edge): no face
+    // holds the particle's projection; the closest point pushes it away from
+    // itself, along the line from that point to the particle.
+    if (pc.count == 0 && best_facet >= 0 && best < radius * radius) {
+      const V3 offset = p - best_point;
+      const double distance = std::sqrt(best);
+      if (offset.dot(normal[best_facet]) > 0 && distance > 1e-12)
+        add_contact(best_facet, V3(offset / distance), radius - distance, best_w);
+    }
+    for (int k2 = 0; k2 < pc.count; ++k2) {
+      const Contact& ct = pc.c[k2];
+      ax[i] += ct.f[0] / m, ay[i] += ct.f[1] / m, az[i] += ct.f[2] / m;
+    }
+  });
+
+  // Serial sums in particle order: the reaction on the facet nodes and facets.
+  for (std::size_t i = 0; i < n_particles; ++i) {
+    for (int k2 = 0; k2 < contacts[i].count; ++k2) {
+      const Contact& ct = contacts[i].c[k2];
+      const std::uint32_t* q = &s.facet_nodes[4 * ct.facet];
+      for (int a = 0; a < 4; ++a) {
+        loads.node_fx[q[a]] -= ct.w[a] * ct.f[0];
+        loads.node_fy[q[a]] -= ct.w[a] * ct.f[1];
+        loads.node_fz[q[a]] -= ct.w[a] * ct.f[2];
+      }
+      loads.facet_normal_force_N[ct.facet] += ct.fn;
+      loads.facet_tangential_x_N[ct.facet] -= ct.ft[0];
+      loads.facet_tangential_y_N[ct.facet] -= ct.ft[1];
+      loads.facet_tangential_z_N[ct.facet] -= ct.ft[2];
+      ++loads.particles_in_contact[ct.facet];
+      loads.total_fx_N -= ct.f[0], loads.total_fy_N -= ct.f[1], loads.total_fz_N -= ct.f[2];
+      loads.friction_dissipation_J += ct.friction_J;
+      loads.damping_dissipation_J += ct.damping_J;
+      loads.elastic_energy_J += ct.elastic_J;
+    }
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (loads.particles_in_contact[f] == 0) continue;
+    loads.facet_contact_area_m2[f] = area[f];
+    loads.facet_pressure_Pa[f] = area[f] > 0 ? loads.facet_normal_force_N[f] / area[f] : 0.0;
+  }
+}
+
+}  // namespace snow_sph

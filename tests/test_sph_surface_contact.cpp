@@ -1,0 +1,251 @@
+// Particle-surface penalty contact (snow_sph/surface_contact.hpp) against hand
+// calculations: penalty force, its split over the facet nodes, Coulomb friction
+// and its regularisation, damping, momentum balance, concave corners, edges,
+// and independence of the thread count.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include "snow_sph/surface_contact.hpp"
+
+namespace {
+
+using snow_sph::ContactSurface;
+using snow_sph::SurfaceContactParameters;
+using snow_sph::SurfaceLoads;
+
+constexpr double kRadius = 0.005, kStiffness = 1e5, kMass = 1e-3, kDt = 1e-6;
+
+// Adds a quad with corners (x0, y0)-(x1, y1) at height z, outward normal -z
+// (the underside of a tyre: the terrain is below it).
+void add_flat_quad(ContactSurface& s, double x0, double y0, double x1, double y1, double z, double mu) {
+  const auto base = static_cast<std::uint32_t>(s.x.size());
+  const double xs[4] = {x0, x0, x1, x1}, ys[4] = {y0, y1, y1, y0};
+  for (int a = 0; a < 4; ++a) {
+    s.x.push_back(xs[a]), s.y.push_back(ys[a]), s.z.push_back(z);
+    s.vx.push_back(0), s.vy.push_back(0), s.vz.push_back(0);
+  }
+  // (x2 - x0) x (x3 - x1) = (d, d, 0) x (d, -d, 0) = -2 d^2 e_z: outward -z.
+  for (std::uint32_t a = 0; a < 4; ++a) s.facet_nodes.push_back(base + a);
+  s.friction_coefficient.push_back(mu);
+}
+
+SurfaceContactParameters params() {
+  SurfaceContactParameters p;
+  p.particle_radius_m = kRadius;
+  p.stiffness_N_per_m = kStiffness;
+  return p;
+}
+
+struct Particle {
+  double x, y, z, vx = 0, vy = 0, vz = 0, m = kMass;
+  double ax = 0, ay = 0, az = 0;
+};
+
+SurfaceLoads contact(const ContactSurface& s, Particle& p, const SurfaceContactParameters& prm = params()) {
+  SurfaceLoads loads;
+  snow_sph::surface_contact(s, prm, 1, &p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.m, kDt, &p.ax, &p.ay, &p.az, loads);
+  return loads;
+}
+
+TEST(SurfaceContact, PenaltyForceOnAParticleBelowAFacetCentreIsSplitEquallyOverItsNodes) {
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.3);
+  const double delta = 0.001;
+  Particle p{0.0, 0.0, -(kRadius - delta)};
+  const SurfaceLoads l = contact(s, p);
+  EXPECT_NEAR(p.az * kMass, -kStiffness * delta, 1e-9);  // pushed away from the tyre (down)
+  EXPECT_NEAR(p.ax, 0.0, 1e-12);
+  for (int a = 0; a < 4; ++a) EXPECT_NEAR(l.node_fz[a], kStiffness * delta / 4.0, 1e-9);
+  EXPECT_NEAR(l.facet_normal_force_N[0], kStiffness * delta, 1e-9);
+  EXPECT_NEAR(l.facet_contact_area_m2[0], 4e-4, 1e-15);
+  EXPECT_NEAR(l.facet_pressure_Pa[0], kStiffness * delta / 4e-4, 1e-6);
+  EXPECT_EQ(l.particles_in_contact[0], 1u);
+  EXPECT_NEAR(l.elastic_energy_J, 0.5 * kStiffness * delta * delta, 1e-15);
+}
+
+TEST(SurfaceContact, NoForceBeyondTheRadiusOrBeyondTheDepthBehindTheFacet) {
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.3);
+  Particle far{0.0, 0.0, -1.001 * kRadius};
+  EXPECT_EQ(contact(s, far).particles_in_contact[0], 0u);
+  EXPECT_EQ(far.az, 0.0);
+  Particle behind{0.0, 0.0, 2.01 * kRadius};  // default max depth: one diameter
+  EXPECT_EQ(contact(s, behind).particles_in_contact[0], 0u);
+}
+
+TEST(SurfaceContact, DampingActsOnlyWhileApproaching) {
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.0);
+  const double delta = 0.001, c = 2.0 * 0.2 * std::sqrt(kStiffness * kMass);
+  Particle in{0.0, 0.0, -(kRadius - delta)};
+  in.vz = 0.3;  // moving up, into the tyre
+  contact(s, in);
+  EXPECT_NEAR(in.az * kMass, -(kStiffness * delta + c * 0.3), 1e-9);
+  Particle out{0.0, 0.0, -(kRadius - delta)};
+  out.vz = -0.3;  // leaving
+  contact(s, out);
+  EXPECT_NEAR(out.az * kMass, -kStiffness * delta, 1e-9);
+}
+
+TEST(SurfaceContact, CoulombFrictionWhenSlidingRegularisedWhenNearlySticking) {
+  ContactSurface s;
+  const double mu = 0.3, delta = 0.001;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, mu);
+  const double fn = kStiffness * delta;
+  // Sliding fast along +x: friction mu fn against the motion.
+  Particle slide{0.0, 0.0, -(kRadius - delta)};
+  slide.vx = 2.0;
+  const SurfaceLoads l = contact(s, slide);
+  EXPECT_NEAR(slide.ax * kMass, -mu * fn, 1e-9);
+  EXPECT_NEAR(l.facet_tangential_x_N[0], mu * fn, 1e-9);  // the surface is dragged along
+  EXPECT_NEAR(l.friction_dissipation_J, mu * fn * 2.0 * kDt, 1e-15);
+  // Slow: the regularising damper m / (4 dt) gives less than mu fn.
+  Particle creep{0.0, 0.0, -(kRadius - delta)};
+  creep.vx = 1e-4;
+  contact(s, creep);
+  EXPECT_NEAR(creep.ax * kMass, -0.25 * kMass * 1e-4 / kDt, 1e-12);
+  // Moving with the surface: no friction.
+  ContactSurface moving = s;
+  for (auto& v : moving.vx) v = 2.0;
+  Particle with{0.0, 0.0, -(kRadius - delta)};
+  with.vx = 2.0;
+  contact(moving, with);
+  EXPECT_NEAR(with.ax, 0.0, 1e-9);
+  // mu = 0: none.
+  ContactSurface smooth = s;
+  smooth.friction_coefficient[0] = 0.0;
+  Particle free{0.0, 0.0, -(kRadius - delta)};
+  free.vx = 2.0;
+  contact(smooth, free);
+  EXPECT_EQ(free.ax, 0.0);
+}
+
+TEST(SurfaceContact, OverASharedEdgeOfCoplanarFacetsTheForceIsOneFacetsWorth) {
+  ContactSurface s;
+  add_flat_quad(s, -0.02, -0.01, 0.0, 0.01, 0.0, 0.3);
+  add_flat_quad(s, 0.0, -0.01, 0.02, 0.01, 0.0, 0.3);
+  const double delta = 0.001;
+  Particle centre{-0.01, 0.0, -(kRadius - delta)};
+  contact(s, centre);
+  Particle edge{1e-9, 0.0, -(kRadius - delta)};  // just off the shared edge
+  const SurfaceLoads l = contact(s, edge);
+  EXPECT_NEAR(edge.az, centre.az, 1e-9 * std::fabs(centre.az));
+  EXPECT_NEAR(l.total_fz_N, kStiffness * delta, 1e-9);
+}
+
+TEST(SurfaceContact, InAConcaveCornerBothFacesPushAndTheForceIsTheirSum) {
+  // Floor z = 0 (normal -z) and a wall x = 0 (normal +x) meeting at a concave corner.
+  ContactSurface s;
+  add_flat_quad(s, 0.0, -0.01, 0.02, 0.01, 0.0, 0.0);
+  const auto base = static_cast<std::uint32_t>(s.x.size());
+  const double wx[4] = {0, 0, 0, 0}, wy[4] = {-0.01, -0.01, 0.01, 0.01}, wz[4] = {0, -0.02, -0.02, 0};
+  for (int a = 0; a < 4; ++a) {
+    s.x.push_back(wx[a]), s.y.push_back(wy[a]), s.z.push_back(wz[a]);
+    s.vx.push_back(0), s.vy.push_back(0), s.vz.push_back(0);
+  }
+  // (x2 - x0) x (x3 - x1) = (0, 0.02, -0.02) x (0, 0.02, 0.02) = (0.0008, 0, 0): +x.
+  for (std::uint32_t a = 0; a < 4; ++a) s.facet_nodes.push_back(base + a);
+  s.friction_coefficient.push_back(0.0);
+  const double dx = 0.001, dz = 0.002;
+  Particle p{kRadius - dx, 0.0, -(kRadius - dz)};
+  const SurfaceLoads l = contact(s, p);
+  EXPECT_NEAR(p.ax * kMass, kStiffness * dx, 1e-9);
+  EXPECT_NEAR(p.az * kMass, -kStiffness * dz, 1e-9);
+  EXPECT_EQ(l.particles_in_contact[0] + l.particles_in_contact[1], 2u);
+}
+
+TEST(SurfaceContact, AConvexEdgePushesAlongTheLineFromTheEdge) {
+  // One facet; the particle beyond its edge x = 0.01, below and outside.
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.0);
+  const double d = 0.6 * kRadius;
+  Particle p{0.01 + d / std::sqrt(2.0), 0.0, -d / std::sqrt(2.0)};
+  contact(s, p);
+  const double f = kStiffness * (kRadius - d);
+  EXPECT_NEAR(p.ax * kMass, f / std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(p.az * kMass, -f / std::sqrt(2.0), 1e-9);
+}
+
+// A patch of a cylinder (radius 0.35 m, axis y) seen from below, moving, and
+// particles scattered under it with random velocities.
+struct Scatter {
+  ContactSurface s;
+  std::vector<double> x, y, z, vx, vy, vz, m;
+};
+Scatter scattered() {
+  Scatter c;
+  const int nt = 6, ny = 6;
+  const double r = 0.35;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nt; ++i) {
+      const double th = -0.15 + 0.3 * i / nt, yy = -0.05 + 0.1 * j / ny;
+      c.s.x.push_back(r * std::sin(th)), c.s.y.push_back(yy), c.s.z.push_back(r - r * std::cos(th));
+      c.s.vx.push_back(1.0 + 0.1 * th), c.s.vy.push_back(0.01 * yy), c.s.vz.push_back(-0.2);
+    }
+  auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (nt + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nt; ++i) {
+      // Outward (away from the axis, down at the bottom): order (i,j), (i,j+1), (i+1,j+1), (i+1,j).
+      for (auto n : {id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j)}) c.s.facet_nodes.push_back(n);
+      c.s.friction_coefficient.push_back(0.3 + 0.05 * (i % 3));
+    }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 3000; ++k) {
+    const double th = -0.15 + 0.3 * u(rng), yy = -0.05 + 0.1 * u(rng), rr = r + (u(rng) - 0.7) * 2.5 * kRadius;
+    c.x.push_back(rr * std::sin(th)), c.y.push_back(yy), c.z.push_back(r - rr * std::cos(th));
+    c.vx.push_back(u(rng) - 0.5), c.vy.push_back(u(rng) - 0.5), c.vz.push_back(u(rng) - 0.5);
+    c.m.push_back(kMass * (0.5 + u(rng)));
+  }
+  return c;
+}
+
+TEST(SurfaceContact, MomentumIsExchangedExactlyAndFacetSumsMatchNodeSums) {
+  Scatter c = scattered();
+  const std::size_t n = c.x.size();
+  std::vector<double> ax(n, 0.0), ay(n, 0.0), az(n, 0.0);
+  SurfaceLoads l;
+  snow_sph::surface_contact(c.s, params(), n, c.x.data(), c.y.data(), c.z.data(), c.vx.data(), c.vy.data(),
+                            c.vz.data(), c.m.data(), kDt, ax.data(), ay.data(), az.data(), l);
+  double px = 0, py = 0, pz = 0, nx = 0, ny = 0, nz = 0;
+  std::uint32_t in_contact = 0;
+  for (std::size_t i = 0; i < n; ++i) px += c.m[i] * ax[i], py += c.m[i] * ay[i], pz += c.m[i] * az[i];
+  for (std::size_t a = 0; a < l.node_fx.size(); ++a) nx += l.node_fx[a], ny += l.node_fy[a], nz += l.node_fz[a];
+  for (auto k : l.particles_in_contact) in_contact += k;
+  ASSERT_GT(in_contact, 500u);
+  const double scale = std::fabs(pz);
+  EXPECT_NEAR(px, -nx, 1e-12 * scale);
+  EXPECT_NEAR(py, -ny, 1e-12 * scale);
+  EXPECT_NEAR(pz, -nz, 1e-12 * scale);
+  EXPECT_NEAR(nx, l.total_fx_N, 1e-12 * scale);
+  EXPECT_NEAR(nz, l.total_fz_N, 1e-12 * scale);
+  EXPECT_GT(nz, 0.0);  // the particles push the tyre up
+}
+
+TEST(SurfaceContact, ResultDoesNotDependOnTheThreadCount) {
+  Scatter c = scattered();
+  const std::size_t n = c.x.size();
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    std::vector<double> a(3 * n, 0.0);
+    SurfaceLoads l;
+    snow_sph::surface_contact(c.s, params(), n, c.x.data(), c.y.data(), c.z.data(), c.vx.data(), c.vy.data(),
+                              c.vz.data(), c.m.data(), kDt, a.data(), a.data() + n, a.data() + 2 * n, l);
+    a.insert(a.end(), l.node_fx.begin(), l.node_fx.end());
+    a.insert(a.end(), l.node_fz.begin(), l.node_fz.end());
+    a.insert(a.end(), l.facet_normal_force_N.begin(), l.facet_normal_force_N.end());
+    return a;
+  };
+  const auto one = run(1), two = run(2);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t k = 0; k < one.size(); ++k) ASSERT_EQ(one[k], two[k]) << k;
+}
+
+TEST(SurfaceContact, StableStepOfThePenaltySpring) {
+  EXPECT_DOUBLE_EQ(snow_sph::surface_contact_stable_dt(1e-3, 1e5), 2.0 * std::sqrt(1e-8));
+}
+
+}  // namespace
