@@ -15,7 +15,10 @@ Session::Session(const SessionOptions& options)
   if (options.run_id == 0) throw cosim::Error("a coupled run needs a non-zero run id (--run-id)");
 }
 
-Session::~Session() = default;
+Session::~Session() {
+  stop_heartbeat_ = true;
+  if (heartbeat_.joinable()) heartbeat_.join();
+}
 
 tp::HandshakeResult Session::join(const std::vector<tp::Role>& peers, double proposed_dt_s,
                                   const std::vector<tp::Endpoint*>& data_endpoints) {
@@ -26,8 +29,24 @@ tp::HandshakeResult Session::join(const std::vector<tp::Role>& peers, double pro
   h.proposed_time_step_s = proposed_dt_s;
   h.timeout = ms(options_.start_timeout_s);
   h.data_endpoints = data_endpoints;
-  tp::HandshakeResult r = tp::handshake(*control_out_, *control_in_, h);
+  tp::HandshakeResult r = [&] {
+    std::lock_guard<std::mutex> lock(control_mutex_);
+    return tp::handshake(*control_out_, *control_in_, h);
+  }();
   pending_ = r.other_messages;
+  const auto now = std::chrono::steady_clock::now();
+  for (tp::Role peer : peers) last_heard_[peer] = now;
+  heartbeat_ = std::thread([this] {
+    const auto period = std::chrono::duration<double>(options_.heartbeat_period_s);
+    while (!stop_heartbeat_) {
+      try {
+        send_control(tp::ControlKind::heartbeat, 0, "", 0.0);
+      } catch (const std::exception&) {
+        // A failed heartbeat is a missing heartbeat: the peers will notice.
+      }
+      std::this_thread::sleep_for(period);
+    }
+  });
   return r;
 }
 
@@ -63,8 +82,10 @@ void Session::announce_start(double agreed_dt_s, const std::string& note) {
 bool Session::control_says_stop(std::string& reason) {
   std::vector<tp::RunControl> messages;
   tp::take_accepted(*control_in_, control_filter_, messages);
+  const auto now = std::chrono::steady_clock::now();
   for (const auto& m : messages) {
     if (m.sender == options_.self) continue;
+    last_heard_[m.sender] = now;
     if (m.addressee != tp::Role::any && m.addressee != options_.self) continue;
     if (m.kind == tp::ControlKind::failure)
       throw cosim::Error(std::string("the ") + tp::role_name(m.sender) + " failed at step " +
@@ -77,6 +98,16 @@ bool Session::control_says_stop(std::string& reason) {
   return false;
 }
 
+void Session::check_alive(tp::Role from, std::uint64_t step, const char* what) {
+  const auto it = last_heard_.find(from);
+  if (it == last_heard_.end()) return;
+  const double silent = std::chrono::duration<double>(std::chrono::steady_clock::now() - it->second).count();
+  if (silent > options_.heartbeat_timeout_s)
+    throw cosim::Error(std::string("the ") + tp::role_name(from) + " process has sent nothing for " +
+                       std::to_string(silent).substr(0, 4) + " s (no heartbeat) while we waited for its " + what +
+                       " of step " + std::to_string(step) + ": it died or hangs");
+}
+
 void Session::send_control(tp::ControlKind kind, std::uint64_t step, const std::string& reason, double agreed_dt_s) {
   tp::RunControl m;
   m.header = {options_.run_id, step, 0.0};
@@ -85,17 +116,23 @@ void Session::send_control(tp::ControlKind kind, std::uint64_t step, const std::
   m.addressee = tp::Role::any;
   m.agreed_time_step_s = agreed_dt_s;
   m.reason = reason;
+  std::lock_guard<std::mutex> lock(control_mutex_);
   control_out_->write(m);
 }
 
 void Session::send_stop(std::uint64_t step, const std::string& reason) {
   send_control(tp::ControlKind::stop, step, reason, 0.0);
+  stop_heartbeat_ = true;
+  std::lock_guard<std::mutex> lock(control_mutex_);
   control_out_->wait_for_acknowledgments(std::chrono::milliseconds(2000));
 }
 
 void Session::send_failure(std::uint64_t step, const std::string& reason) {
   send_control(tp::ControlKind::failure, step, reason, 0.0);
-  control_out_->wait_for_acknowledgments(std::chrono::milliseconds(1000));
+  stop_heartbeat_ = true;
+  // A dead peer never acknowledges: wait only briefly for the live ones.
+  std::lock_guard<std::mutex> lock(control_mutex_);
+  control_out_->wait_for_acknowledgments(std::chrono::milliseconds(300));
 }
 
 void Session::count_rejections(const tp::SampleFilter& filter) {

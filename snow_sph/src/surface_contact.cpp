@@ -15,7 +15,7 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 
-constexpr double kStickDamping = 0.25;  // friction regulariser: c_t = kStickDamping m / dt
+constexpr double kStickDamping = 0.05;  // friction regulariser: c_t = kStickDamping m / dt
 
 // Closest point to p on triangle abc and its barycentric weights (Ericson,
 // Real-Time Collision Detection, 2005, 5.1.5: Voronoi regions of the vertices,
@@ -232,13 +232,16 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       V3 ft = V3::Zero();
       double ft_mag = 0.0;
       if (vt > 0.0) {
-        // Coulomb friction regularised by a tangential damper c_t = m / (4 dt): a
-        // sticking particle matches the surface's velocity within about four
+        // Coulomb friction regularised by a tangential damper c_t = m / (20 dt): a
+        // sticking particle matches the surface's velocity within about twenty
         // steps. The damper couples the particle to the surface nodes, whose
-        // mass the terrain does not know; its explicit update is stable while
-        // c_t dt (1/m + n/M) < 2 for n such particles on a node of mass M, i.e.
-        // n m < 7 M (m / dt, stopping the slip in one step, went unstable in the
-        // coupled torque scene as soon as n m > M).
+        // mass M the terrain does not know; its explicit update is stable while
+        // c_t dt (1/m + n/M) < 2 for n particles on a node, i.e. n m < 39 M.
+        // Sipe-cut tread nodes are lighter than a 20 mm snow particle
+        // (n m / M about 9 in the coarse torque scene): m / dt and m / (4 dt)
+        // both pumped energy into the tyre there. The price is creep: full
+        // friction needs a slip of mu fn 20 dt / m (0.2-0.5 m/s at the scenes'
+        // resolutions); an elastic stick anchor would remove it (docs/coupling.md).
         ft_mag = std::min(s.friction_coefficient[f] * fn, kStickDamping * m * vt / dt);
         ft = -ft_mag / vt * vt_vec;
       }

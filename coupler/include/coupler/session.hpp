@@ -10,10 +10,14 @@
 //   terrain -> coupler : ContactLoads_terrain
 //   coupler -> tyre    : ContactLoads_tyre;  coupler -> anyone: ForceSummary
 //   everyone           : RunControl (hello/ready/start/stop/failure)
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cosim/error.hpp"
@@ -40,8 +44,13 @@ struct SessionOptions {
   tp::TransportOptions transport;
   std::uint64_t run_id = 0;
   tp::Role self = tp::Role::any;
-  double step_timeout_s = 4.0;    // a peer silent this long during the run is dead
+  double step_timeout_s = 4.0;    // no sample of a step for this long: the peer hangs
   double start_timeout_s = 600.0;  // for the others to appear and say READY
+  // Every process sends a HEARTBEAT every heartbeat_period_s from a thread of
+  // its own once the run has started; a peer not heard for heartbeat_timeout_s
+  // has died (a slow step of a large model does not look like a dead peer).
+  double heartbeat_period_s = 0.25;
+  double heartbeat_timeout_s = 2.0;
 };
 
 // The run ended normally (a STOP from the tyre) while we were waiting.
@@ -58,7 +67,8 @@ class Session {
   const SessionOptions& options() const { return options_; }
   std::uint64_t run_id() const { return options_.run_id; }
 
-  // Start handshake with `peers` (this side's data endpoints must all be matched).
+  // Start handshake with `peers` (this side's data endpoints must all be matched);
+  // then the heartbeat starts.
   tp::HandshakeResult join(const std::vector<tp::Role>& peers, double proposed_dt_s,
                            const std::vector<tp::Endpoint*>& data_endpoints);
   // Solvers: the common step announced by the coupler's START (perhaps already
@@ -87,6 +97,8 @@ class Session {
  private:
   // Throws (failure) or returns a stop reason if the control topic says the run ended.
   bool control_says_stop(std::string& reason);
+  // Throws if `from` has not been heard for heartbeat_timeout_s.
+  void check_alive(tp::Role from, std::uint64_t step, const char* what);
   void send_control(tp::ControlKind kind, std::uint64_t step, const std::string& reason, double agreed_dt_s);
 
   SessionOptions options_;
@@ -96,6 +108,10 @@ class Session {
   tp::SampleFilter control_filter_;
   std::vector<tp::RunControl> pending_;  // non-handshake control samples seen during the handshake
   std::uint64_t rejected_run_id_ = 0, rejected_step_ = 0;
+  std::mutex control_mutex_;  // the heartbeat thread and the main thread share control_out_
+  std::map<tp::Role, std::chrono::steady_clock::time_point> last_heard_;
+  std::atomic<bool> stop_heartbeat_{false};
+  std::thread heartbeat_;
 };
 
 template <class T>
@@ -106,11 +122,13 @@ bool Session::wait_step(tp::Reader<T>& reader, tp::SampleFilter& filter, std::ui
   const double limit = timeout_s > 0 ? timeout_s : options_.step_timeout_s;
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
   std::string reason;
+  if (control_says_stop(reason)) return false;  // keeps the control queue short
   while (true) {
     // Short slices: the sample wakes us at once; between slices the control
-    // topic is checked so that a peer's FAILURE or STOP ends the wait early.
+    // topic is checked so that a peer's FAILURE, STOP or silence ends the wait early.
     if (tp::wait_for_accepted(reader, filter, out, std::chrono::microseconds(50000))) return true;
     if (control_says_stop(reason)) return false;
+    check_alive(from, step, what);
     if (Clock::now() > deadline)
       throw cosim::Error(std::string("no ") + what + " from the " + tp::role_name(from) + " for step " +
                          std::to_string(step) + " within " + std::to_string(limit) +

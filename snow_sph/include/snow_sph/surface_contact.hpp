@@ -55,7 +55,7 @@ struct SurfaceContactParameters {
 // Each contact: penetration delta = radius - d (at most one diameter) gives
 // fn = max(0, k delta - c_d v_n) along the normal (v_n: normal velocity of the
 // particle relative to the surface at the contact point; damping only while
-// approaching), and Coulomb friction ft = min(mu fn, m vt / (4 dt)) against the
+// approaching), and Coulomb friction ft = min(mu fn, m vt / (20 dt)) against the
 // relative tangential velocity (stability note in surface_contact.cpp).
 // The force on the particle is added to (ax, ay, az)[i] / mass[i]; the opposite
 // force goes to the facet's nodes with the bilinear shape functions at the
