@@ -27,7 +27,6 @@ ip link set "$VA" netns "$A" && ip link set "$VB" netns "$B"
 ip -n "$A" addr add "$ADDR_A/24" dev "$VA" && ip -n "$B" addr add "$ADDR_B/24" dev "$VB"
 for ns in "$A" "$B"; do ip -n "$ns" link set lo up; done
 ip -n "$A" link set "$VA" up && ip -n "$B" link set "$VB" up
-ip netns exec "$A" ping -c 1 -W 2 "$ADDR_B" >/dev/null || { echo "FAILED: the veth link does not carry traffic"; exit 1; }
 
 RUN=$(printf '%x' $(( (RANDOM << 16) | RANDOM | 1 )))
 COMMON=(--run-id "$RUN" --domain 71 --set time.max_steps=$STEPS --quiet)

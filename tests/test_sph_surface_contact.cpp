@@ -130,10 +130,12 @@ TEST(SurfaceContact, OverASharedEdgeOfCoplanarFacetsTheForceIsOneFacetsWorth) {
   const double delta = 0.001;
   Particle centre{-0.01, 0.0, -(kRadius - delta)};
   contact(s, centre);
-  Particle edge{1e-9, 0.0, -(kRadius - delta)};  // just off the shared edge
-  const SurfaceLoads l = contact(s, edge);
-  EXPECT_NEAR(edge.az, centre.az, 1e-9 * std::fabs(centre.az));
-  EXPECT_NEAR(l.total_fz_N, kStiffness * delta, 1e-9);
+  for (double x : {1e-9, 0.0}) {  // just off the shared edge, and exactly on it
+    Particle edge{x, 0.0, -(kRadius - delta)};
+    const SurfaceLoads l = contact(s, edge);
+    EXPECT_NEAR(edge.az, centre.az, 1e-9 * std::fabs(centre.az)) << x;
+    EXPECT_NEAR(l.total_fz_N, kStiffness * delta, 1e-9) << x;
+  }
 }
 
 TEST(SurfaceContact, InAConcaveCornerBothFacesPushAndTheForceIsTheirSum) {

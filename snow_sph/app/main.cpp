@@ -3,6 +3,7 @@
 //   snow_sph SCENE --out DIR --coupled --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR]
 // (coupled: the terrain of a coupled run; docs/coupling.md)
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 
 #include <CLI/CLI.hpp>
@@ -48,9 +49,19 @@ int main(int argc, char** argv) {
       snow_sph::DdsSurfaceExchange exchange(session);
       snow_sph::RunOptions options{out_dir, quiet, !no_vtk};
       options.exchange = &exchange;
-      const auto summary = snow_sph::run_scene(*scene, options);
-      std::printf("%s\n", summary["results"].dump(2).c_str());
-      return 0;
+      try {
+        const auto summary = snow_sph::run_scene(*scene, options);
+        std::printf("%s\n", summary["results"].dump(2).c_str());
+        return 0;
+      } catch (const std::exception& e) {
+        // Everything is on disk (the run flushed its outputs and told its peers);
+        // skip the DDS teardown, which waits for acknowledgements from peers that
+        // may be dead, so that a failed run ends within the time it promises.
+        std::fprintf(stderr, "snow_sph: error: %s\n", e.what());
+        std::fflush(nullptr);
+        std::_Exit(2);
+      }
+
     }
     const auto summary = snow_sph::run_scene(*scene, {out_dir, quiet, !no_vtk});
     std::printf("%s\n", summary["results"].dump(2).c_str());

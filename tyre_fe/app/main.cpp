@@ -3,6 +3,7 @@
 //   tyre_fe SCENE --out DIR --coupled --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR]
 // (coupled: on the terrain solver of a coupled run, through the coupler; docs/coupling.md)
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 
 #include <CLI/CLI.hpp>
@@ -50,9 +51,19 @@ int main(int argc, char** argv) {
       tyre_fe::DdsTerrainPort port(session, c.contact_band_m() > 0 ? c.contact_band_m() : 0.12);
       tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
       options.terrain = &port;
-      const auto summary = tyre_fe::run_tyre_scene(*scene, options);
-      std::printf("%s\n", summary["results"].dump(2).c_str());
-      return 0;
+      try {
+        const auto summary = tyre_fe::run_tyre_scene(*scene, options);
+        std::printf("%s\n", summary["results"].dump(2).c_str());
+        return 0;
+      } catch (const std::exception& e) {
+        // Everything is on disk (the run flushed its outputs and told its peers);
+        // skip the DDS teardown, which waits for acknowledgements from peers that
+        // may be dead, so that a failed run ends within the time it promises.
+        std::fprintf(stderr, "tyre_fe: error: %s\n", e.what());
+        std::fflush(nullptr);
+        std::_Exit(2);
+      }
+
     }
     const auto summary = tyre_fe::run_tyre_scene(*scene, {out_dir, quiet, !no_vtk, mesh_only});
     std::printf("%s\n", summary["results"].dump(2).c_str());
