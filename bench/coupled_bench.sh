@@ -24,8 +24,8 @@ while [ $# -gt 0 ]; do
     --thesis) SETS=(--set sph.particle_spacing_m=0.01
                     --set sph.container.min.x=-0.4 --set sph.container.max.x=2.5
                     --set sph.container.min.y=-0.3 --set sph.container.max.y=0.3
-                    --set sph.blocks.0.region.min.x=-0.4 --set sph.blocks.0.region.max.x=2.5
-                    --set sph.blocks.0.region.min.y=-0.3 --set sph.blocks.0.region.max.y=0.3
+                    --set sph.blocks[0].region.min.x=-0.4 --set sph.blocks[0].region.max.x=2.5
+                    --set sph.blocks[0].region.min.y=-0.3 --set sph.blocks[0].region.max.y=0.3
                     --set tyre.mesh.element_size_m=0.012 --set tyre.tread.pitch_count=60
                     --set tyre.mass_scaling_target_dt_s=0); shift ;;
     --steps) STEPS=$2; shift 2 ;;
@@ -66,6 +66,12 @@ import json, glob, sys
 rows = [json.load(open(f)) for f in sorted(glob.glob(sys.argv[1] + "/*/bench.json"))]
 print("particles %d, tyre elements %d" % (rows[0]["particles"], rows[0]["tyre_elements"]))
 PY
+# Every pair ran the same steps: their forces must be bit-identical.
+if [ "$(md5sum "$OUT"/*/coupler/forces.csv | awk '{print $1}' | sort -u | wc -l)" = 1 ]; then
+  echo "forces.csv identical (bit for bit) on every pair: $PAIRS"
+else
+  echo "forces.csv DIFFER between pairs:"; md5sum "$OUT"/*/coupler/forces.csv
+fi
 # The run's payload: surface nodes listed per step (the coupler's kinematics), for the pure DDS cost.
 nodes=$(python3 -c "
 import json; s=json.load(open('$(ls -d $OUT/*/ | head -1)coupler/summary.json')); print(int(s['payload']['mean_surface_nodes_per_step']))")

@@ -10,7 +10,8 @@ PACKAGES=(cmake g++ make git pkg-config
   libeigen3-dev libprotobuf-dev protobuf-compiler
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev gnuplot-nox
-  cyclonedds-dev cyclonedds-tools libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools)
+  cyclonedds-dev cyclonedds-tools libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  iproute2)  # ip netns: the two-host test (tests/netns_coupled.sh)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -71,7 +71,7 @@ enum Col { time_s, step, f3, f1, f2, f4, rrm, f5, drawbar, net_pressure, tractio
 TEST(CoupledRun, CrossVendorTorqueSceneWritesTheDecompositionOfEveryStep) {
   const auto dir = test_support::scratch("coupled_cross");
   auto [code, out] = shell(bin() + "/cosim run " + kScene + " --out " + dir +
-                           " --dds tyre=fast,terrain=cyclone,coupler=cyclone --domain 60 --no-vtk --quiet");
+                           " --dds tyre=fast,terrain=cyclone,coupler=cyclone --domain 3 --no-vtk --quiet");
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("coupler (cyclone) + snow_sph (cyclone) + tyre_fe (fast)"), std::string::npos) << out;
   const auto summary = read_json(dir + "/summary.json");
@@ -111,7 +111,7 @@ TEST(CoupledRun, CrossVendorTorqueSceneWritesTheDecompositionOfEveryStep) {
   const auto same = test_support::scratch("coupled_fast");
   const int compare_steps = 400;
   auto [code2, out2] = shell(bin() + "/cosim run " + kScene + " --out " + same +
-                             " --dds fast --domain 61 --no-vtk --quiet --set time.max_steps=" +
+                             " --dds fast --domain 4 --no-vtk --quiet --set time.max_steps=" +
                              std::to_string(compare_steps + 10));
   ASSERT_EQ(code2, 0) << out2;
   const auto rows2 = lines_of(same + "/forces.csv");
@@ -140,7 +140,7 @@ pid_t find_process(const std::string& program, const std::string& marker) {
 TEST(CoupledRun, KillingTheTerrainStopsTheOthersWithinFiveSecondsAndKeepsTheForces) {
   const auto dir = test_support::scratch("coupled_kill");
   const std::vector<std::string> args{bin() + "/cosim", "run", kScene, "--out", dir, "--dds", "cyclone",
-                                      "--domain", "62", "--no-vtk", "--quiet"};
+                                      "--domain", "5", "--no-vtk", "--quiet"};
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);

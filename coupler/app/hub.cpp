@@ -212,6 +212,7 @@ nlohmann::json run_hub(Session& session, const cosim::LoadedScene& loaded, const
       results["final_contact_area_m2"] = rows.back().d.contact_area_m2;
       results["final_sinkage_m"] = rows.back().d.sinkage_m;
     }
+    for (const auto* f : {&mesh_filter, &tyre_filter, &wheel_filter, &terrain_filter}) session.count_rejections(*f);
     const double wall = seconds_since(start);
     summary["performance"] = {{"coupler_forwarding_s", exchange_s}, {"steps_per_s", wall > 0 ? step / wall : 0.0}};
     summary["payload"] = {{"mean_surface_nodes_per_step", step ? nodes_sent / step : 0.0},

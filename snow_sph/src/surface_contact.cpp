@@ -228,9 +228,10 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       for (int a = 0; a < 4; ++a) vs += w[a] * V3(s.vx[q[a]], s.vy[q[a]], s.vz[q[a]]);
       const V3 rel = vp - vs;
       const double vn = rel.dot(n);
-      // A particle pushed past the facet by more than its diameter (tunnelled)
-      // is pushed back with the force of one diameter's penetration.
-      delta = std::min(delta, 2.0 * radius);
+      // A particle pushed past the facet plane (penetration beyond its radius)
+      // is pushed back with the force of a radius's penetration: no larger
+      // impulse reaches the light tread nodes of a sipe-cut block.
+      delta = std::min(delta, radius);
       const double c_d = 2.0 * params.damping_ratio * std::sqrt(k * m);
       const double damping = vn < 0.0 ? -c_d * vn : 0.0;
       const double fn = std::max(0.0, k * delta + damping);

@@ -52,7 +52,7 @@ struct SurfaceContactParameters {
 //  - otherwise an edge or corner contact with the closest point c of the
 //    nearest facet (Ericson, Real-Time Collision Detection 2005, 5.1.5), along
 //    the line from c to the particle (a convex ridge pushes away from itself).
-// Each contact: penetration delta = radius - d (at most one diameter) gives
+// Each contact: penetration delta = radius - d (at most one radius) gives
 // fn = max(0, k delta - c_d v_n) along the normal (v_n: normal velocity of the
 // particle relative to the surface at the contact point; damping only while
 // approaching), and Coulomb friction ft = min(mu fn, m vt / (20 dt)) against the
