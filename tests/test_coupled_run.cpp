@@ -33,19 +33,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string bin() {
-  const char* b = std::getenv("COSIM_BIN_DIR");
-  return b ? b : "build/bin";
-}
-
-std::pair<int, std::string> shell(const std::string& command) {
-  std::string output;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
+using test_support::bin;
+using test_support::shell;
 
 std::vector<std::string> lines_of(const std::string& path) {
   std::ifstream in(path);

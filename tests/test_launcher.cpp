@@ -9,20 +9,8 @@
 
 namespace {
 
-std::string bin() {
-  const char* b = std::getenv("COSIM_BIN_DIR");
-  return b ? b : "build/bin";
-}
-
-// Runs a command; returns exit code and combined output.
-std::pair<int, std::string> shell(const std::string& command) {
-  std::string output;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
+using test_support::bin;
+using test_support::shell;
 
 TEST(Launcher, CheckAcceptsAGoodSceneAndRefusesABadOne) {
   auto [ok, out] = shell(bin() + "/cosim check " + test_support::scene_path("plate_sinkage"));

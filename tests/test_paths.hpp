@@ -1,9 +1,13 @@
 #pragma once
 // Paths shared by every test: the source tree, its data and scenes, and a fresh
 // scratch folder per test. No solver headers, so any test can include it.
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <utility>
+
+#include <sys/wait.h>
 
 namespace test_support {
 
@@ -24,6 +28,22 @@ inline std::string scratch(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// Folder of the built programs (COSIM_BIN_DIR, set by CTest).
+inline std::string bin() {
+  const char* b = std::getenv("COSIM_BIN_DIR");
+  return b ? b : "build/bin";
+}
+
+// Runs a shell command; returns its exit code and its combined output.
+inline std::pair<int, std::string> shell(const std::string& command) {
+  std::string output;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return {WEXITSTATUS(status), output};
 }
 
 }  // namespace test_support

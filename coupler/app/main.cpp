@@ -34,12 +34,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", summary["results"].dump(2).c_str());
       return 0;
     } catch (const std::exception& e) {
-      // Everything is on disk (the run flushed its outputs and told its peers);
-      // skip the DDS teardown, which waits for acknowledgements from peers that
-      // may be dead, so that a failed run ends within the time it promises.
-      std::fprintf(stderr, "coupler: error: %s\n", e.what());
-      std::fflush(nullptr);
-      std::_Exit(2);
+      coupler::exit_after_failure("coupler", e);
     }
 
   } catch (const cosim::Error& e) {

@@ -4,6 +4,9 @@
 // them to the processes it starts; by hand, on separate hosts, give each
 // program the same --run-id and --domain and point --peer at the other hosts
 // (README, "Running on several machines").
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -13,6 +16,16 @@
 #include "cosim/scene_io.hpp"
 
 namespace coupler {
+
+// The end of a coupled process that failed: everything is on disk (the run
+// flushed its outputs and told its peers), so the DDS teardown, which waits for
+// acknowledgements from peers that may be dead, is skipped and the run ends
+// within the time it promises.
+[[noreturn]] inline void exit_after_failure(const char* program, const std::exception& e) {
+  std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+  std::fflush(nullptr);
+  std::_Exit(2);
+}
 
 struct CouplingCli {
   bool coupled = false;
