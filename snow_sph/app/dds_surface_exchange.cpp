@@ -56,6 +56,7 @@ const ContactSurface* DdsSurfaceExchange::surface(std::uint64_t exchange) {
     }
   }
   s.friction_coefficient = k.friction_coefficient;
+  s.facet_id.assign(k.facets.begin(), k.facets.end());
   last_exchange_ = exchange;
   last_time_s_ = k.header.sim_time_s;
   return &surface_;

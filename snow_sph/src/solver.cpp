@@ -429,7 +429,8 @@ void Solver::exchange_surface(std::uint64_t exchange, double dt) {
   for (std::size_t i = 0; i < n; ++i)
     a_before_[3 * i] = p.ax[i], a_before_[3 * i + 1] = p.ay[i], a_before_[3 * i + 2] = p.az[i];
   surface_contact(*surface, surface_params_, n, p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(),
-                  p.vz.data(), p.mass.data(), dt, p.ax.data(), p.ay.data(), p.az.data(), surface_loads_);
+                  p.vz.data(), p.mass.data(), dt, p.ax.data(), p.ay.data(), p.az.data(), surface_loads_,
+                  &friction_history_, p.id.data());
   // Power of the surface on the particles (external work of the terrain model).
   double power = 0.0;
   for (std::size_t i = 0; i < n; ++i)

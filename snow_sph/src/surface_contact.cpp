@@ -16,7 +16,7 @@ namespace {
 using V3 = Eigen::Vector3d;
 
 constexpr double kSameSurfaceCos = 0.99619469809;  // cos 5 deg
-constexpr double kStickDamping = 0.05;  // friction regulariser: c_t = kStickDamping m / dt
+constexpr double kStickInheritCos = 0.86602540378;  // cos 30 deg: a stick moves onto a neighbouring facet
 
 // Closest point to p on triangle abc and its barycentric weights (Ericson,
 // Real-Time Collision Detection, 2005, 5.1.5: Voronoi regions of the vertices,
@@ -120,6 +120,9 @@ FacetGrid bin_facets(const ContactSurface& s, double reach) {
 constexpr int kMaxContacts = 6;
 struct Contact {
   std::int32_t facet = -1;
+  std::uint32_t facet_id = 0;  // in the owner's numbering (the history's key)
+  double normal[3] = {0, 0, 0};
+  double spring[3] = {0, 0, 0};  // elastic tangential force on the particle after this call
   double w[4] = {0, 0, 0, 0};
   double f[3] = {0, 0, 0};  // force on the particle
   double fn = 0.0, ft[3] = {0, 0, 0};
@@ -174,10 +177,11 @@ double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N
 void surface_contact(const ContactSurface& s, const SurfaceContactParameters& params, std::size_t n_particles,
                      const double* x, const double* y, const double* z, const double* vx, const double* vy,
                      const double* vz, const double* mass, double dt, double* ax, double* ay, double* az,
-                     SurfaceLoads& loads) {
+                     SurfaceLoads& loads, FrictionHistory* history, const std::uint32_t* particle_id) {
   const std::size_t nn = s.x.size(), nf = s.facet_count();
   if (s.facet_nodes.size() != 4 * nf || s.friction_coefficient.size() != nf || s.y.size() != nn ||
-      s.z.size() != nn || s.vx.size() != nn || s.vy.size() != nn || s.vz.size() != nn)
+      s.z.size() != nn || s.vx.size() != nn || s.vy.size() != nn || s.vz.size() != nn ||
+      (!s.facet_id.empty() && s.facet_id.size() != nf))
     throw cosim::Error("contact surface: node or facet arrays differ in length");
   for (std::uint32_t n : s.facet_nodes)
     if (n >= nn) throw cosim::Error("contact surface: facet node " + std::to_string(n) + " out of range");
@@ -187,7 +191,11 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
                   &loads.facet_tangential_z_N, &loads.facet_contact_area_m2, &loads.facet_pressure_Pa})
     v->assign(nf, 0.0);
   loads.particles_in_contact.assign(nf, 0);
-  if (nf == 0 || n_particles == 0) return;
+  auto id_of = [&](std::size_t i) { return particle_id ? particle_id[i] : static_cast<std::uint32_t>(i); };
+  if (nf == 0 || n_particles == 0) {
+    if (history) *history = FrictionHistory{};
+    return;
+  }
 
   const double radius = params.particle_radius_m, k = params.stiffness_N_per_m;
   const double depth = params.max_depth_m > 0 ? params.max_depth_m : 2.0 * radius;
@@ -219,6 +227,17 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     const double m = mass[i];
     const V3 vp(vx[i], vy[i], vz[i]);
     ParticleContacts& pc = contacts[i];
+    // This particle's sticks of the last call (each can be taken over once).
+    const FrictionHistory::Stick* old = nullptr;
+    int old_count = 0;
+    bool old_taken[kMaxContacts] = {false, false, false, false, false, false};
+    if (history) {
+      const std::uint32_t id = id_of(i);
+      if (static_cast<std::size_t>(id) + 1 < history->begin.size()) {
+        old = history->sticks.data() + history->begin[id];
+        old_count = std::min<int>(kMaxContacts, static_cast<int>(history->begin[id + 1] - history->begin[id]));
+      }
+    }
     // Penalty force of one facet along `n` with penetration `delta`, friction
     // against the facet's velocity at the contact point (weights w).
     auto add_contact = [&](std::int32_t f, const V3& n, double delta, const double w[4]) {
@@ -237,31 +256,70 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       const double fn = std::max(0.0, k * delta + damping);
       const V3 vt_vec = rel - vn * n;
       const double vt = vt_vec.norm();
-      V3 ft = V3::Zero();
-      double ft_mag = 0.0;
-      if (vt > 0.0) {
-        // Coulomb friction regularised by a tangential damper c_t = m / (20 dt): a
-        // sticking particle matches the surface's velocity within about twenty
-        // steps. The damper couples the particle to the surface nodes, whose
-        // mass M the terrain does not know; its explicit update is stable while
-        // c_t dt (1/m + n/M) < 2 for n particles on a node, i.e. n m < 39 M.
-        // Sipe-cut tread nodes are lighter than a 20 mm snow particle
-        // (n m / M about 9 in the coarse torque scene): m / dt and m / (4 dt)
-        // both pumped energy into the tyre there. The price is creep: full
-        // friction needs a slip of mu fn 20 dt / m (0.2-0.5 m/s at the scenes'
-        // resolutions); an elastic stick anchor would remove it (docs/coupling.md).
-        ft_mag = std::min(s.friction_coefficient[f] * fn, kStickDamping * m * vt / dt);
-        ft = -ft_mag / vt * vt_vec;
+      const std::uint32_t fid = s.facet_id.empty() ? static_cast<std::uint32_t>(f) : s.facet_id[f];
+      // Coulomb friction with an elastic stick (penalty friction with elastic
+      // slip: Wriggers, Computational Contact Mechanics, 2006, 5.2.2; Abaqus
+      // Analysis User's Guide 37.1.5). The spring of the last call (same facet,
+      // or a neighbouring one within 30 degrees: the particle rolled over an
+      // edge of the tread) is turned into this tangent plane, loaded by this
+      // step's relative tangential motion and capped at mu fn. The spring has
+      // the normal penalty's stiffness (ratio 1), so it adds to the particle
+      // and to the facet's nodes no more than the normal spring the scenes
+      // already size for stability; its damper is the normal one's fraction of
+      // critical. Sticking therefore needs no slip speed (the damper
+      // m / (20 dt) used before needed 0.2-0.5 m/s of creep for full friction).
+      V3 spring = V3::Zero();
+      int from = -1;
+      double best_cos = kStickInheritCos;
+      for (int o = 0; o < old_count; ++o) {
+        if (old_taken[o]) continue;
+        if (old[o].facet == fid) {
+          from = o;
+          break;
+        }
+        const double c = n.dot(V3(old[o].normal[0], old[o].normal[1], old[o].normal[2]));
+        if (c >= best_cos) best_cos = c, from = o;
       }
+      if (from >= 0) {
+        old_taken[from] = true;
+        const V3 prev(old[from].force[0], old[from].force[1], old[from].force[2]);
+        const V3 in_plane = prev - prev.dot(n) * n;
+        const double norm = in_plane.norm();
+        if (norm > 0.0) spring = in_plane * (prev.norm() / norm);
+      }
+      const double mu = s.friction_coefficient[f];
+      const double kt = params.tangential_stiffness_ratio * k;
+      const double cap = mu * fn;
+      spring -= kt * dt * vt_vec;
+      V3 ft = V3::Zero();
+      double friction_J = 0.0;
+      const double spring_norm = spring.norm();
+      if (cap <= 0.0 || kt <= 0.0) {
+        spring = V3::Zero();
+      } else if (spring_norm >= cap) {
+        // Sliding: the spring stays at the cap; the excess is slip, mu fn times its length dissipated.
+        friction_J = cap * (spring_norm - cap) / kt;
+        spring *= cap / spring_norm;
+        ft = spring;
+      } else {
+        // Sticking: spring plus damper, the sum held within the cone.
+        const double c_t = 2.0 * params.damping_ratio * std::sqrt(kt * m);
+        ft = spring - c_t * vt_vec;
+        const double ft_norm = ft.norm();
+        if (ft_norm > cap) ft *= cap / ft_norm;
+        friction_J = std::max(0.0, -(ft - spring).dot(vt_vec)) * dt;
+      }
+      const double ft_mag = ft.norm();
       const V3 force = fn * n + ft;
       Contact& ct = pc.c[pc.count++];
       ct.facet = f;
+      ct.facet_id = fid;
       for (int a = 0; a < 4; ++a) ct.w[a] = w[a];
-      for (int a = 0; a < 3; ++a) ct.f[a] = force[a], ct.ft[a] = ft[a];
+      for (int a = 0; a < 3; ++a) ct.f[a] = force[a], ct.ft[a] = ft[a], ct.normal[a] = n[a], ct.spring[a] = spring[a];
       ct.fn = fn;
-      ct.friction_J = ft_mag * vt * dt;
+      ct.friction_J = friction_J;
       ct.damping_J = std::min(damping, fn) * std::max(-vn, 0.0) * dt;
-      ct.elastic_J = 0.5 * k * delta * delta;
+      ct.elastic_J = 0.5 * k * delta * delta + (ft_mag > 0.0 ? 0.5 * spring.squaredNorm() / kt : 0.0);
     };
     // Face contacts: every facet whose plane the particle penetrates with its
     // projection inside the facet. Summing them (not only the closest) keeps
@@ -364,6 +422,26 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       loads.damping_dissipation_J += ct.damping_J;
       loads.elastic_energy_J += ct.elastic_J;
     }
+  }
+  // The sticks of this call become the history of the next, grouped by particle id.
+  if (history) {
+    std::uint32_t max_id = 0;
+    for (std::size_t i = 0; i < n_particles; ++i) max_id = std::max(max_id, id_of(i));
+    FrictionHistory next;
+    next.begin.assign(static_cast<std::size_t>(max_id) + 2, 0);
+    for (std::size_t i = 0; i < n_particles; ++i) next.begin[id_of(i) + 1] = static_cast<std::uint32_t>(contacts[i].count);
+    for (std::size_t k2 = 0; k2 + 1 < next.begin.size(); ++k2) next.begin[k2 + 1] += next.begin[k2];
+    next.sticks.resize(next.begin.back());
+    for (std::size_t i = 0; i < n_particles; ++i) {
+      FrictionHistory::Stick* out = next.sticks.data() + next.begin[id_of(i)];
+      for (int k2 = 0; k2 < contacts[i].count; ++k2) {
+        const Contact& ct = contacts[i].c[k2];
+        out[k2].facet = ct.facet_id;
+        for (int a = 0; a < 3; ++a)
+          out[k2].normal[a] = static_cast<float>(ct.normal[a]), out[k2].force[a] = ct.spring[a];
+      }
+    }
+    *history = std::move(next);
   }
   for (std::size_t f = 0; f < nf; ++f) {
     if (loads.particles_in_contact[f] == 0) continue;

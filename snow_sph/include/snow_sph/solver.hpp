@@ -107,6 +107,7 @@ class Solver {
   SurfaceExchange* exchange_ = nullptr;
   SurfaceContactParameters surface_params_;
   SurfaceLoads surface_loads_;
+  FrictionHistory friction_history_;  // elastic sticks, keyed by the stable particle id
   std::vector<double> a_before_;  // accelerations before the surface contact (its power)
   double surface_power_ = 0.0;
   double exchange_wait_s_ = 0.0;

@@ -17,7 +17,23 @@ struct ContactSurface {
   std::vector<double> vx, vy, vz;           // node velocities [m/s]
   std::vector<std::uint32_t> facet_nodes;   // 4 node indices per facet
   std::vector<double> friction_coefficient; // one per facet (Coulomb mu >= 0)
+  // Each facet's number in the owner's surface (stable from step to step, while
+  // the facets sent change), for the friction history; empty: the index here.
+  std::vector<std::uint32_t> facet_id;
   std::size_t facet_count() const { return facet_nodes.size() / 4; }
+};
+
+// The elastic stick of every particle-facet contact, carried from one call to
+// the next: the tangential spring force and the facet (with its normal then),
+// grouped by the particles' stable ids. Owned by the caller; start it empty.
+struct FrictionHistory {
+  struct Stick {
+    std::uint32_t facet = 0;   // facet id in the owner's numbering
+    float normal[3] = {0, 0, 0};  // the contact normal of the last call
+    double force[3] = {0, 0, 0};  // elastic tangential force on the particle [N]
+  };
+  std::vector<std::uint32_t> begin;  // sticks of particle id k: [begin[k], begin[k + 1])
+  std::vector<Stick> sticks;
 };
 
 // What the contact did in one step.
@@ -39,7 +55,8 @@ struct SurfaceLoads {
 struct SurfaceContactParameters {
   double particle_radius_m = 0;  // half the particle spacing: contact below this distance
   double stiffness_N_per_m = 0;  // penalty stiffness per particle
-  double damping_ratio = 0.2;    // of critical, sqrt(k m), only while approaching
+  double damping_ratio = 0.2;    // of critical, sqrt(k m): normal (only while approaching) and tangential
+  double tangential_stiffness_ratio = 1.0;  // k_t / k of the elastic stick
   double max_depth_m = 0;        // particles deeper than this behind a facet are ignored (0: 2 radius)
 };
 
@@ -55,8 +72,15 @@ struct SurfaceContactParameters {
 // Each contact: penetration delta = radius - d (at most one radius) gives
 // fn = max(0, k delta - c_d v_n) along the normal (v_n: normal velocity of the
 // particle relative to the surface at the contact point; damping only while
-// approaching), and Coulomb friction ft = min(mu fn, m vt / (20 dt)) against the
-// relative tangential velocity (stability note in surface_contact.cpp).
+// approaching), and Coulomb friction with an elastic stick: a tangential spring
+// k_t = ratio k, loaded by the relative tangential motion, damped by
+// c_t = 2 damping_ratio sqrt(k_t m) while it sticks, and capped at mu fn, where
+// it slides (the spring is then the cap). A sticking particle holds a steady
+// tangential load with an elastic offset of at most mu fn / k_t and no creep.
+// The spring is carried between calls in `history` (by the stable `particle_id`
+// and the facet id; a contact that moved onto a neighbouring facet within 30
+// degrees keeps its spring, turned into the new tangent plane). Without a
+// history every contact starts unloaded.
 // The force on the particle is added to (ax, ay, az)[i] / mass[i]; the opposite
 // force goes to the facet's nodes with the bilinear shape functions at the
 // contact point (linear along an edge), so momentum is conserved exactly.
@@ -64,7 +88,8 @@ struct SurfaceContactParameters {
 void surface_contact(const ContactSurface& surface, const SurfaceContactParameters& params,
                      std::size_t n_particles, const double* x, const double* y, const double* z,
                      const double* vx, const double* vy, const double* vz, const double* mass,
-                     double dt, double* ax, double* ay, double* az, SurfaceLoads& loads);
+                     double dt, double* ax, double* ay, double* az, SurfaceLoads& loads,
+                     FrictionHistory* history = nullptr, const std::uint32_t* particle_id = nullptr);
 
 // Central-difference limit of a penalty spring on the lightest particle: 2 sqrt(m / k).
 double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N_per_m);
