@@ -18,6 +18,8 @@
 
 #include "cosim/error.hpp"
 #include "tyre_fe/geometry.hpp"
+#include "tyre_fe/outputs.hpp"
+#include "tyre_fe/terrain_port.hpp"
 #include "tyre_fe/vtk_mesh.hpp"
 
 using namespace tyre_fe;
@@ -468,4 +470,48 @@ TEST(Vtk, WritesBigEndianLegacyFiles) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/mesh.vtk.tmp"));
   EXPECT_THROW(write_vtk_facets(dir + "/bad.vtk", m, m.nodes, {{"bad name", 1, {}}}), cosim::Error);
   EXPECT_THROW(write_vtk_mesh(dir + "/no_such_dir/x.vtk", m, m.nodes), cosim::Error);
+}
+
+// The contact surface offered to a terrain: every outer facet (not the inner
+// liner, not the rim faces), and the terrain's facet pressures come back onto
+// the mesh facets they were reported on (the surface VTK's contact_pressure_Pa
+// in a coupled run), added to the road's nodal mean.
+TEST(ContactSurface, OuterFacetsAndTerrainPressureOnTheRightMeshFacet) {
+  TreadPattern p = four_grooves(TreadVariant::rib);
+  p.pitch_count = 12;
+  p.elements_per_pitch = 2;
+  const Mesh3D m = revolve(default_section(), p);
+  const ContactSurfaceDef surface = make_contact_surface(m);
+  ASSERT_EQ(surface.mesh_facets.size(), surface.facet_count());
+  ASSERT_EQ(surface.facet_nodes.size(), 4 * surface.facet_count());
+  std::map<SurfaceTag, int> outer;
+  for (const auto& f : m.facets)
+    if (f.tag != SurfaceTag::inner_liner && f.tag != SurfaceTag::rim_contact) ++outer[f.tag];
+  std::map<SurfaceTag, int> offered;
+  for (std::size_t f = 0; f < surface.facet_count(); ++f) {
+    const auto& mesh_facet = m.facets.at(surface.mesh_facets[f]);
+    ASSERT_EQ(mesh_facet.tag, surface.facet_tags[f]) << "surface facet " << f;
+    for (int k = 0; k < 4; ++k)
+      ASSERT_EQ(surface.node_ids.at(surface.facet_nodes[4 * f + k]), mesh_facet.nodes[k]) << "surface facet " << f;
+    ++offered[surface.facet_tags[f]];
+  }
+  EXPECT_EQ(offered, outer);
+
+  // A road pressure of 4 kPa on one node and the terrain's 70 kPa on two facets.
+  std::vector<double> nodal(m.nodes.size(), 0.0);
+  const int road_node = m.facets[0].nodes[2];
+  nodal[road_node] = 4000.0;
+  TerrainLoads loads;
+  const std::uint32_t f1 = 3, f2 = static_cast<std::uint32_t>(surface.facet_count() - 1);
+  loads.facets = {f1, f2};
+  loads.facet_pressure_Pa = {70e3, 35e3};
+  const std::vector<double> facet_p = facet_contact_pressure_Pa(m, nodal, surface, loads);
+  ASSERT_EQ(facet_p.size(), m.facets.size());
+  for (std::size_t f = 0; f < m.facets.size(); ++f) {
+    const auto& n = m.facets[f].nodes;
+    double expected = std::count(n.begin(), n.end(), road_node) * 1000.0;
+    if (static_cast<int>(f) == surface.mesh_facets[f1]) expected += 70e3;
+    if (static_cast<int>(f) == surface.mesh_facets[f2]) expected += 35e3;
+    ASSERT_EQ(facet_p[f], expected) << "mesh facet " << f;
+  }
 }

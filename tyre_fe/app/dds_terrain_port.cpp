@@ -90,6 +90,14 @@ void DdsTerrainPort::receive(std::uint64_t exchange, TerrainLoads& loads) {
   }
   loads.contact_area_m2 = 0.0;
   for (double a : l.contact_area_m2) loads.contact_area_m2 += a;
+  if (l.pressure_Pa.size() != l.facets.size())
+    throw cosim::Error("ContactLoads of step " + std::to_string(exchange) + ": facet and pressure sequences differ in length");
+  for (std::uint32_t f : l.facets)
+    if (f >= surface_->facet_count())
+      throw cosim::Error("ContactLoads of step " + std::to_string(exchange) + ": surface facet " + std::to_string(f) +
+                         " does not exist (" + std::to_string(surface_->facet_count()) + " surface facets)");
+  loads.facets = l.facets;
+  loads.facet_pressure_Pa = l.pressure_Pa;
 }
 
 void DdsTerrainPort::finish(bool failed, const std::string& reason) {

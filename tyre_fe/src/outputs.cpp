@@ -37,14 +37,21 @@ bool run_gnuplot(const std::string& script_path, const std::string& script) {
 
 }  // namespace
 
-// Per facet: the mean contact pressure of its four nodes.
 static VtkField facet_pressure(const Model3d& model, const State3d& s) {
-  const std::vector<double> p = contact_pressure_Pa(model, s);
-  VtkField f{"contact_pressure_Pa", 1, {}};
-  f.values.reserve(model.mesh.facets.size());
-  for (const auto& facet : model.mesh.facets)
-    f.values.push_back(0.25 * (p[facet.nodes[0]] + p[facet.nodes[1]] + p[facet.nodes[2]] + p[facet.nodes[3]]));
-  return f;
+  return {"contact_pressure_Pa", 1,
+          facet_contact_pressure_Pa(model.mesh, contact_pressure_Pa(model, s), s.terrain.surface, s.terrain.loads)};
+}
+
+std::vector<double> facet_contact_pressure_Pa(const Mesh3D& mesh, const std::vector<double>& nodal_road_pressure_Pa,
+                                              const ContactSurfaceDef& surface, const TerrainLoads& loads) {
+  const auto& p = nodal_road_pressure_Pa;
+  std::vector<double> facet_p;
+  facet_p.reserve(mesh.facets.size());
+  for (const auto& facet : mesh.facets)
+    facet_p.push_back(0.25 * (p[facet.nodes[0]] + p[facet.nodes[1]] + p[facet.nodes[2]] + p[facet.nodes[3]]));
+  for (std::size_t k = 0; k < loads.facets.size() && k < loads.facet_pressure_Pa.size(); ++k)
+    facet_p[surface.mesh_facets.at(loads.facets[k])] += loads.facet_pressure_Pa[k];
+  return facet_p;
 }
 
 void write_cross_section_vtk(const std::string& path, const CrossSection& section,

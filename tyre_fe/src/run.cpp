@@ -225,7 +225,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       s.rim.z += lift;
       s.road.height_m = 0.0;  // heights below are measured from the terrain surface
       s.terrain.port = options.terrain;
-      s.terrain.surface = make_contact_surface(model);
+      s.terrain.surface = make_contact_surface(model.mesh);
       if (!options.quiet)
         std::fprintf(stderr, "[%s] joining the terrain and the coupler (%zu surface facets)\n", scene.name().c_str(),
                      s.terrain.surface.facet_count());
@@ -278,7 +278,8 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       // Depth of the lowest tyre point below the undisturbed terrain surface z = 0.
       if (options.terrain) results["sinkage_m"] = free_radius(model, s) - s.rim.z;
       results["kinetic_energy_after_loading_J"] = s.energy.kinetic_J;
-      write_footprint(out, model, s);
+      // On a terrain solver the footprint is the coupler's (contact_pressure.png).
+      if (!options.terrain) write_footprint(out, model, s);
       s.damping_per_s = 0.0;
     }
 

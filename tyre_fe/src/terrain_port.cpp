@@ -4,10 +4,11 @@
 
 namespace tyre_fe {
 
-ContactSurfaceDef make_contact_surface(const Model3d& model) {
+ContactSurfaceDef make_contact_surface(const Mesh3D& mesh) {
   ContactSurfaceDef surface;
   std::unordered_map<int, std::uint32_t> surface_index;
-  for (const auto& facet : model.mesh.facets) {
+  for (std::size_t f = 0; f < mesh.facets.size(); ++f) {
+    const auto& facet = mesh.facets[f];
     // The inner liner faces the inflation gas and the rim faces are held by the rim.
     if (facet.tag == SurfaceTag::inner_liner || facet.tag == SurfaceTag::rim_contact) continue;
     for (int n : facet.nodes) {
@@ -16,6 +17,7 @@ ContactSurfaceDef make_contact_surface(const Model3d& model) {
       surface.facet_nodes.push_back(it->second);
     }
     surface.facet_tags.push_back(facet.tag);
+    surface.mesh_facets.push_back(static_cast<int>(f));
   }
   return surface;
 }

@@ -10,6 +10,7 @@
 
 #include "tyre_fe/model3d.hpp"
 #include "tyre_fe/solver3d.hpp"
+#include "tyre_fe/terrain_port.hpp"
 
 namespace tyre_fe {
 
@@ -36,6 +37,12 @@ class FrameWriter {
 
 // Contact pressure per contact node [Pa] = normal force / tributary area.
 std::vector<double> contact_pressure_Pa(const Model3d& model, const State3d& s);
+
+// Contact pressure per mesh facet [Pa]: the mean of its four nodes' road
+// pressure, plus the terrain's pressure on the facets it reports in a coupled
+// run (surface facet -> mesh facet through surface.mesh_facets).
+std::vector<double> facet_contact_pressure_Pa(const Mesh3D& mesh, const std::vector<double>& nodal_road_pressure_Pa,
+                                              const ContactSurfaceDef& surface, const TerrainLoads& loads);
 
 // footprint.csv (x, y, contact pressure of the nodes in contact) and footprint.png.
 void write_footprint(const std::string& folder, const Model3d& model, const State3d& s);

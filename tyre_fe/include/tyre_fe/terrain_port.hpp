@@ -27,9 +27,10 @@ struct ContactSurfaceDef {
   std::vector<int> node_ids;
   std::vector<std::uint32_t> facet_nodes;
   std::vector<SurfaceTag> facet_tags;
+  std::vector<int> mesh_facets;  // surface facet f is mesh.facets[mesh_facets[f]]
   std::size_t facet_count() const { return facet_tags.size(); }
 };
-ContactSurfaceDef make_contact_surface(const Model3d& model);
+ContactSurfaceDef make_contact_surface(const Mesh3D& mesh);
 
 // Forces of the terrain on surface nodes (sparse, surface-node indices).
 struct TerrainLoads {
@@ -37,6 +38,10 @@ struct TerrainLoads {
   std::vector<double> fx_N, fy_N, fz_N;
   double total_x_N = 0.0, total_y_N = 0.0, total_z_N = 0.0;
   double contact_area_m2 = 0.0;  // as the terrain counts it
+  // Contact pressure of the contacted facets (surface-facet indices), for the
+  // tyre's own outputs; the forces above are what the step uses.
+  std::vector<std::uint32_t> facets;
+  std::vector<double> facet_pressure_Pa;
 };
 
 class TerrainPort {
