@@ -497,7 +497,7 @@ TEST(ContactSurface, OuterFacetsAndTerrainPressureOnTheRightMeshFacet) {
   }
   EXPECT_EQ(offered, outer);
 
-  // A road pressure of 4 kPa on one node and the terrain's 70 kPa on two facets.
+  // A road pressure of 4 kPa on one node and the terrain's 70 and 35 kPa on two facets.
   std::vector<double> nodal(m.nodes.size(), 0.0);
   const int road_node = m.facets[0].nodes[2];
   nodal[road_node] = 4000.0;
