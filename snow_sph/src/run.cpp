@@ -250,9 +250,9 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
   summary["performance"] = {
       {"particle_steps_per_s", wall > 0 ? p.n_real * static_cast<double>(steps) / wall : 0.0},
       {"mean_neighbours", steps && p.n_real ? inter / (static_cast<double>(steps) * p.n_real) : 0.0},
-      {"interactions_per_s", wall > 0 ? 2.0 * inter / wall : 0.0},
-      {"note", "interactions: neighbour pairs within the support, counted from both sides, "
-               "evaluated twice per step (rates and forces)"}};
+      {"interactions_per_s", wall > 0 ? inter / wall : 0.0},
+      {"note", "interactions: neighbour pairs within the support per step, counted from both "
+               "sides as DualSPHysics counts them (each is visited twice a step: rates, forces)"}};
   if (coupled) {
     // Stepping only (model building and the start handshake excluded).
     const double compute = wall - coupled_from_s - solver.exchange_wait_s();

@@ -120,6 +120,17 @@ void Solver::compute_rates_t() {
   pair_inv_.resize(list_.index.size());
   const auto* off = list_.offsets.data();
   const auto* nb = list_.index.data();
+  if (any_water_) {
+    is_water_.resize(p.size());
+    water_viscosity_.resize(p.size());
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      const MaterialModel& mj = m_.materials[p.material[j]];
+      const bool water = mj.kind == MaterialModel::Kind::water;
+      is_water_[j] = water ? 1.0 : 0.0;
+      water_viscosity_[j] = water ? mj.viscosity : 0.0;
+    }
+  }
+  const double* is_water = is_water_.data();
   cosim::parallel_for("sph.rates", p.n_real, [&](std::size_t i) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
     const double vxi = p.vx[i], vyi = p.vy[i], vzi = p.vz[i];
@@ -129,40 +140,55 @@ void Solver::compute_rates_t() {
     const double hydro = diffuse ? mi.density0 / (mi.eos.c0 * mi.eos.c0) : 0.0;
     double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
     double diffusion = 0.0;
-    std::uint32_t count = 0;
+    double count = 0.0;  // a double so that the loop below vectorises as one type
     const double* px = p.x.data(); const double* py = p.y.data(); const double* pz = p.z.data();
     const double* pvx = p.vx.data(); const double* pvy = p.vy.data(); const double* pvz = p.vz.data();
     const double* pm = p.mass.data(); const double* prho = p.density.data();
     float* pf = pair_f_.data();
     float* pinv = pair_inv_.data();
-    // Branch-free body: pairs beyond the support (list skin) have a zero gradient.
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const std::uint32_t j = nb[e];
-      const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
-      const double r2 = std::max(rx * rx + ry * ry + rz * rz, 1e-24);
-      count += r2 < s2 ? 1u : 0u;
-      const double r = std::sqrt(r2);
-      const double f = k.template gradient_over_r_t<T>(r, 1.0 / r);
-      pf[e] = static_cast<float>(f);  // reused by the force pass (same positions)
-      pinv[e] = static_cast<float>(1.0 / (r2 + eta2));
-      const double mjf = pm[j] * f;
-      const double gx = rx * mjf, gy = ry * mjf, gz = rz * mjf;
-      const double dvx = pvx[j] - vxi, dvy = pvy[j] - vyi, dvz = pvz[j] - vzi;
-      l0 += dvx * gx, l1 += dvx * gy, l2 += dvx * gz;
-      l3 += dvy * gx, l4 += dvy * gy, l5 += dvy * gz;
-      l6 += dvz * gx, l7 += dvz * gy, l8 += dvz * gz;
+    const std::uint32_t first = off[i];
+    const int n_pairs = static_cast<int>(off[i + 1] - first);
+    const std::uint32_t* __restrict nbi = nb + first;
+    float* __restrict pfi = pf + first;
+    float* __restrict pinvi = pinv + first;
+    // Branch-free body: pairs beyond the support (list skin) have a zero
+    // gradient, so the loop vectorises over neighbours. The summation order is
+    // fixed by the pair list, so results do not depend on the thread count.
+    {
+#pragma omp simd reduction(+ : l0, l1, l2, l3, l4, l5, l6, l7, l8, count)
+      for (int e = 0; e < n_pairs; ++e) {
+        const std::uint32_t j = nbi[e];
+        const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+        // + 1e-24 m^2 keeps coincident points finite; it is below the rounding
+        // of any r^2 within the support (and, unlike max(), vectorises).
+        const double r2 = rx * rx + ry * ry + rz * rz + 1e-24;
+        count += r2 < s2 ? 1.0 : 0.0;
+        const double r = std::sqrt(r2);
+        const double f = k.template gradient_over_r_t<T>(r, 1.0 / r);
+        pfi[e] = static_cast<float>(f);  // reused by the force pass (same positions)
+        pinvi[e] = static_cast<float>(1.0 / (r2 + eta2));
+        const double mjf = pm[j] * f;
+        const double gx = rx * mjf, gy = ry * mjf, gz = rz * mjf;
+        const double dvx = pvx[j] - vxi, dvy = pvy[j] - vyi, dvz = pvz[j] - vzi;
+        l0 += dvx * gx, l1 += dvx * gy, l2 += dvx * gz;
+        l3 += dvy * gx, l4 += dvy * gy, l5 += dvy * gz;
+        l6 += dvz * gx, l7 += dvz * gy, l8 += dvz * gz;
+      }
     }
     if (diffuse) {
-      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-        const std::uint32_t j = nb[e];
-        if (m_.materials[p.material[j]].kind != MaterialModel::Kind::water) continue;
+      const double rho_i = prho[i];
+      const double hgx = hydro * g[0], hgy = hydro * g[1], hgz = hydro * g[2];
+#pragma omp simd reduction(+ : diffusion)
+      for (int e = 0; e < n_pairs; ++e) {
+        const std::uint32_t j = nbi[e];
         const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
-        const double f = pf[e];  // from the loop above
+        const double f = pfi[e];  // from the loop above
         // psi_ij . grad W = 2 (rho_j - rho_i - drho_hydro) (x_ji . grad W) / r^2, and
         // (x_ji . grad W) / r^2 = -F; drho_hydro = rho0/c^2 g . (x_j - x_i).
-        const double drho_h = hydro * (-(g[0] * rx + g[1] * ry + g[2] * rz));
-        const double psi = 2.0 * (prho[j] - prho[i] - drho_h);
-        diffusion += psi * (-f) * pm[j] / prho[j];
+        // Water neighbours only (is_water = 1 or 0).
+        const double drho_h = -(hgx * rx + hgy * ry + hgz * rz);
+        const double psi = 2.0 * (prho[j] - rho_i - drho_h);
+        diffusion += is_water[j] * psi * (-f) * pm[j] / prho[j];
       }
     }
     double l[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
@@ -171,7 +197,7 @@ void Solver::compute_rates_t() {
     lyx_[i] = l[3] * inv_rho, lyy_[i] = l[4] * inv_rho, lyz_[i] = l[5] * inv_rho;
     lzx_[i] = l[6] * inv_rho, lzy_[i] = l[7] * inv_rho, lzz_[i] = l[8] * inv_rho;
     p.density_rate[i] = -(l[0] + l[4] + l[8]) + c_diff * diffusion;
-    p.neighbour_count[i] = count;
+    p.neighbour_count[i] = static_cast<std::uint32_t>(count);
   });
 }
 
@@ -242,7 +268,6 @@ template <KernelType T>
 void Solver::compute_forces_t() {
   Particles& p = m_.particles;
   const Kernel k = m_.kernel;
-  const double s2 = k.support * k.support;
   const double h = k.h;
   const double alpha = m_.settings.av_alpha, beta = m_.settings.av_beta;
   const double* g = m_.settings.gravity;
@@ -273,6 +298,9 @@ void Solver::compute_forces_t() {
   const double* qxy = qxy_.data(); const double* qyz = qyz_.data(); const double* qxz = qxz_.data();
   const bool any_water = any_water_;
   const double damping = m_.settings.damping_per_s;
+  const double* rxx = rxx_.data(); const double* ryy = ryy_.data(); const double* rzz = rzz_.data();
+  const double* rxy = rxy_.data(); const double* ryz = ryz_.data(); const double* rxz = rxz_.data();
+  const double* water_viscosity = water_viscosity_.data();
   cosim::parallel_for("sph.forces", p.n_real, [&](std::size_t i) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
     const double vxi = p.vx[i], vyi = p.vy[i], vzi = p.vz[i];
@@ -289,51 +317,64 @@ void Solver::compute_forces_t() {
     const double* pc = p.sound_speed.data();
     const float* pf = pair_f_.data();
     const float* pinv = pair_inv_.data();
-    // Branch-free body: pairs beyond the support (list skin) have a zero
-    // gradient; F and 1/(r^2 + 0.01 h^2) come from the rates pass.
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const std::uint32_t j = nb[e];
-      const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
-      const double f = pf[e];
-      const double mj = pm[j];
-      const double gx = rx * f, gy = ry * f, gz = rz * f;
-      const double bxx = axx + qxx[j], byy = ayy + qyy[j], bzz = azz + qzz[j];
-      const double bxy = axy + qxy[j], byz = ayz + qyz[j], bxz = axz + qxz[j];
-      fx += mj * (bxx * gx + bxy * gy + bxz * gz);
-      fy += mj * (bxy * gx + byy * gy + byz * gz);
-      fz += mj * (bxz * gx + byz * gy + bzz * gz);
-      const double dvx = vxi - pvx[j], dvy = vyi - pvy[j], dvz = vzi - pvz[j];
-      const double vr = dvx * rx + dvy * ry + dvz * rz;
-      const double mu = h * vr * pinv[e];
-      const double visc_all = (-alpha * 0.5 * (ci + pc[j]) * mu + beta * mu * mu) * 2.0 / (rhoi + prho[j]);
-      const double visc = vr < 0.0 ? visc_all : 0.0;  // Pi_ij acts on approaching pairs only
-      vx_ -= mj * visc * gx, vy_ -= mj * visc * gy, vz_ -= mj * visc * gz;
-    }
-    if (art || mu_i > 0.0) {
-      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-        const std::uint32_t j = nb[e];
+    const std::uint32_t first = off[i];
+    const int n_pairs = static_cast<int>(off[i + 1] - first);
+    const std::uint32_t* __restrict nbi = nb + first;
+    const float* __restrict pfi = pf + first;
+    const float* __restrict pinvi = pinv + first;
+    // Branch-free bodies: pairs beyond the support (list skin) have F = 0 and
+    // coincident pairs r = 0, so neither adds anything, and the loops
+    // vectorise over neighbours. F and 1/(r^2 + 0.01 h^2) come from the rates pass.
+    {
+#pragma omp simd reduction(+ : fx, fy, fz, vx_, vy_, vz_)
+      for (int e = 0; e < n_pairs; ++e) {
+        const std::uint32_t j = nbi[e];
         const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
-        const double r2 = rx * rx + ry * ry + rz * rz;
-        if (r2 >= s2 || r2 == 0.0) continue;
-        const double r = std::sqrt(r2);
-        const double f = pf[e];  // from the rates pass
-        const double gx = rx * f, gy = ry * f, gz = rz * f;
+        const double f = pfi[e];
         const double mj = pm[j];
-        if (art) {
-          const double fw = k.template value_t<T>(r) * inv_wdx;
-          const double fn = mj * fw * fw * fw * fw;
-          const double cxx = rxx_[i] + rxx_[j], cyy = ryy_[i] + ryy_[j], czz = rzz_[i] + rzz_[j];
-          const double cxy = rxy_[i] + rxy_[j], cyz = ryz_[i] + ryz_[j], cxz = rxz_[i] + rxz_[j];
-          fx += fn * (cxx * gx + cxy * gy + cxz * gz);
-          fy += fn * (cxy * gx + cyy * gy + cyz * gz);
-          fz += fn * (cxz * gx + cyz * gy + czz * gz);
-        }
-        if (mu_i > 0.0) {
-          const MaterialModel& mj_mat = m_.materials[p.material[j]];
-          const double mu_sum = mu_i + (mj_mat.kind == MaterialModel::Kind::water ? mj_mat.viscosity : 0.0);
-          const double coef = mj * mu_sum / (rhoi * prho[j]) * (rx * gx + ry * gy + rz * gz) * pinv[e];
-          vx_ += coef * (vxi - pvx[j]), vy_ += coef * (vyi - pvy[j]), vz_ += coef * (vzi - pvz[j]);
-        }
+        const double gx = rx * f, gy = ry * f, gz = rz * f;
+        const double bxx = axx + qxx[j], byy = ayy + qyy[j], bzz = azz + qzz[j];
+        const double bxy = axy + qxy[j], byz = ayz + qyz[j], bxz = axz + qxz[j];
+        fx += mj * (bxx * gx + bxy * gy + bxz * gz);
+        fy += mj * (bxy * gx + byy * gy + byz * gz);
+        fz += mj * (bxz * gx + byz * gy + bzz * gz);
+        const double dvx = vxi - pvx[j], dvy = vyi - pvy[j], dvz = vzi - pvz[j];
+        const double vr = dvx * rx + dvy * ry + dvz * rz;
+        // Pi_ij acts on approaching pairs only (vr < 0): mu = 0 otherwise.
+        const double mu = h * std::min(vr, 0.0) * pinvi[e];
+        const double visc = (-alpha * 0.5 * (ci + pc[j]) * mu + beta * mu * mu) * 2.0 / (rhoi + prho[j]);
+        vx_ -= mj * visc * gx, vy_ -= mj * visc * gy, vz_ -= mj * visc * gz;
+      }
+    }
+    if (art) {
+      const double rxx_i = rxx[i], ryy_i = ryy[i], rzz_i = rzz[i];
+      const double rxy_i = rxy[i], ryz_i = ryz[i], rxz_i = rxz[i];
+#pragma omp simd reduction(+ : fx, fy, fz)
+      for (int e = 0; e < n_pairs; ++e) {
+        const std::uint32_t j = nbi[e];
+        const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+        const double r = std::sqrt(rx * rx + ry * ry + rz * rz);
+        const double f = pfi[e];  // from the rates pass
+        const double gx = rx * f, gy = ry * f, gz = rz * f;
+        const double fw = k.template value_t<T>(r) * inv_wdx;
+        const double fn = pm[j] * fw * fw * fw * fw;
+        const double cxx = rxx_i + rxx[j], cyy = ryy_i + ryy[j], czz = rzz_i + rzz[j];
+        const double cxy = rxy_i + rxy[j], cyz = ryz_i + ryz[j], cxz = rxz_i + rxz[j];
+        fx += fn * (cxx * gx + cxy * gy + cxz * gz);
+        fy += fn * (cxy * gx + cyy * gy + cyz * gz);
+        fz += fn * (cxz * gx + cyz * gy + czz * gz);
+      }
+    }
+    if (mu_i > 0.0) {
+      // Morris et al. (1997) viscosity with neighbours of any water material.
+#pragma omp simd reduction(+ : vx_, vy_, vz_)
+      for (int e = 0; e < n_pairs; ++e) {
+        const std::uint32_t j = nbi[e];
+        const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+        const double f = pfi[e];
+        const double mu_sum = mu_i + water_viscosity[j];
+        const double coef = pm[j] * mu_sum / (rhoi * prho[j]) * (rx * rx + ry * ry + rz * rz) * f * pinvi[e];
+        vx_ += coef * (vxi - pvx[j]), vy_ += coef * (vyi - pvy[j]), vz_ += coef * (vzi - pvz[j]);
       }
     }
     // Quasi-static damping (dynamic relaxation), counted as viscous.

@@ -87,7 +87,7 @@ struct Kernel {
     const double q = r * inv_h;
     const double c = norm * inv_h;  // dW/dr = norm * dw/dq / h
     if constexpr (T == KernelType::cubic) {
-      const double a = std::max(2.0 - q, 0.0);
+      const double a = q < 2.0 ? 2.0 - q : 0.0;  // ternaries, not std::max: they vectorise
       const double inner = c * inv_h * (-3.0 + 2.25 * q);  // (-3q + 2.25q^2) / q / h
       const double outer = -0.75 * c * a * a * inv_r;
       return q < 1.0 ? inner : outer;
@@ -95,7 +95,7 @@ struct Kernel {
       const double a = q < 2.0 ? 1.0 : 0.0;
       return a * c * (0.375 * q - 0.75) * inv_r;
     } else {
-      const double a = std::max(3.0 - q, 0.0), b = std::max(2.0 - q, 0.0), e = std::max(1.0 - q, 0.0);
+      const double a = q < 3.0 ? 3.0 - q : 0.0, b = q < 2.0 ? 2.0 - q : 0.0, e = q < 1.0 ? 1.0 - q : 0.0;
       const double a2 = a * a, b2 = b * b, e2 = e * e;
       return c * (-5.0 * a2 * a2 + 30.0 * b2 * b2 - 75.0 * e2 * e2) * inv_r;
     }

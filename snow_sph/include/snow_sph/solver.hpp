@@ -95,6 +95,8 @@ class Solver {
   std::vector<float> pair_f_, pair_inv_;  // per listed pair: F = (1/r) dW/dr, 1/(r^2+0.01h^2)
   std::vector<double> qxx_, qyy_, qzz_, qxy_, qyz_, qxz_;  // sigma / rho^2
   std::vector<double> rxx_, ryy_, rzz_, rxy_, ryz_, rxz_;
+  // Per particle, ghosts included: 1 for water, else 0; water's viscosity, else 0.
+  std::vector<double> is_water_, water_viscosity_;
   std::vector<double> stress_power_, viscous_power_, contact_fx_, contact_fy_, contact_fz_;
   std::vector<double> contact_dissipation_, wall_power_;
   std::vector<double> plastic_increment_;
