@@ -90,6 +90,17 @@ void Solver::rebuild_if_needed(bool force) {
   p.resize(p.n_real);
   p.permute_real(cell_order(p.x.data(), p.y.data(), p.z.data(), p.n_real, radius));
   make_ghosts(m_, radius);
+  if (any_water_) {
+    // Particles change order and ghosts only here, so their material flags do too.
+    is_water_.resize(p.size());
+    water_viscosity_.resize(p.size());
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      const MaterialModel& mj = m_.materials[p.material[j]];
+      const bool water = mj.kind == MaterialModel::Kind::water;
+      is_water_[j] = water ? 1.0 : 0.0;
+      water_viscosity_[j] = water ? mj.viscosity : 0.0;
+    }
+  }
   build_neighbour_list(p.x.data(), p.y.data(), p.z.data(), p.n_real, p.size(), radius, list_);
   ref_x_.assign(p.x.begin(), p.x.begin() + p.n_real);
   ref_y_.assign(p.y.begin(), p.y.begin() + p.n_real);
@@ -120,16 +131,6 @@ void Solver::compute_rates_t() {
   pair_inv_.resize(list_.index.size());
   const auto* off = list_.offsets.data();
   const auto* nb = list_.index.data();
-  if (any_water_) {
-    is_water_.resize(p.size());
-    water_viscosity_.resize(p.size());
-    for (std::size_t j = 0; j < p.size(); ++j) {
-      const MaterialModel& mj = m_.materials[p.material[j]];
-      const bool water = mj.kind == MaterialModel::Kind::water;
-      is_water_[j] = water ? 1.0 : 0.0;
-      water_viscosity_[j] = water ? mj.viscosity : 0.0;
-    }
-  }
   const double* is_water = is_water_.data();
   cosim::parallel_for("sph.rates", p.n_real, [&](std::size_t i) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
@@ -307,8 +308,7 @@ void Solver::compute_forces_t() {
     const double rhoi = p.density[i], ci = p.sound_speed[i];
     const double axx = qxx[i], ayy = qyy[i], azz = qzz[i];
     const double axy = qxy[i], ayz = qyz[i], axz = qxz[i];
-    const MaterialModel& mi = m_.materials[p.material[i]];
-    const double mu_i = any_water && mi.kind == MaterialModel::Kind::water ? mi.viscosity : 0.0;
+    const double mu_i = any_water ? water_viscosity[i] : 0.0;
     double fx = 0, fy = 0, fz = 0;      // stress + artificial stress
     double vx_ = 0, vy_ = 0, vz_ = 0;   // viscous (artificial + physical)
     const double* px = p.x.data(); const double* py = p.y.data(); const double* pz = p.z.data();
