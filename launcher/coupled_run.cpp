@@ -53,6 +53,28 @@ std::string hex(std::uint64_t v) {
   return b;
 }
 
+// The force decomposition of thesis ch. 2, as a person reads it at the end of a run.
+void print_force_means(const nlohmann::json& r, const nlohmann::json& performance, const nlohmann::json& summary) {
+  if (!r.contains("traction_force_N")) return;
+  std::printf("\nForce decomposition (thesis ch. 2), means over the last %.3g s:\n", r.value("averaging_window_s", 0.0));
+  const std::pair<const char*, const char*> rows[] = {
+      {"traction_force_N", "traction F3"},
+      {"motion_resistance_N", "motion resistance F1"},
+      {"groove_force_N", "groove force F2"},
+      {"rolling_resistance_force_N", "rolling-resistance force F5"},
+      {"drawbar_pull_N", "drawbar pull F2 + F3 - F1 - F5"},
+      {"net_longitudinal_pressure_force_N", "net longitudinal pressure -F1 + F2"},
+      {"vertical_pressure_force_N", "vertical pressure force F4"}};
+  for (const auto& [key, label] : rows)
+    if (r.contains(key)) std::printf("  %-38s %10.1f N\n", label, r[key].get<double>());
+  if (r.contains("sinkage_m")) std::printf("  %-38s %10.1f mm\n", "sinkage", 1e3 * r["sinkage_m"].get<double>());
+  if (r.contains("contact_area_m2")) std::printf("  %-38s %10.4f m^2\n", "contact area", r["contact_area_m2"].get<double>());
+  if (performance.contains("coupling_window_s"))
+    std::printf("coupling window %.3g s, %d tyre sub-steps, active particles %.0f %%, wall time %.0f s\n",
+                performance["coupling_window_s"].get<double>(), performance.value("tyre_substeps", 1),
+                100.0 * performance.value("active_particle_share", 1.0), summary.value("wall_time_s", 0.0));
+}
+
 }  // namespace
 
 int run_coupled(const RunRequest& request, const LoadedScene& scene) {
@@ -130,9 +152,22 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
     if (coupler.is_object() && coupler.contains(k)) summary[k] = coupler[k];
   if (terrain.is_object()) summary["particles"] = terrain.value("particles", nlohmann::json());
   if (tyre.is_object()) summary["elements"] = tyre.value("elements", nlohmann::json());
+  // The run's speed and what the coupling did (docs/coupling.md).
+  nlohmann::json performance = nlohmann::json::object();
+  if (coupler.is_object() && coupler.contains("performance")) performance = coupler["performance"];
+  if (terrain.is_object() && terrain.contains("performance"))
+    for (const char* k : {"active_particle_share", "active_domain_margin_m", "compute_s_per_step"})
+      if (terrain["performance"].contains(k))
+        performance[std::string(k == std::string("compute_s_per_step") ? "terrain_" : "") + k] = terrain["performance"][k];
+  if (tyre.is_object() && tyre.contains("performance") && tyre["performance"].contains("compute_s_per_step"))
+    performance["tyre_compute_s_per_step"] = tyre["performance"]["compute_s_per_step"];
+  summary["performance"] = performance;
   summary["status"] = all_completed ? "completed" : "failed";
   write_json(out + "/summary.json", summary);
-  if (code == 0) std::printf("%s\n", results_json.dump(2).c_str());
+  if (code == 0) {
+    std::printf("%s\n", results_json.dump(2).c_str());
+    print_force_means(results_json, performance, summary);
+  }
   return code;
 }
 

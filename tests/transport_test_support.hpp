@@ -103,6 +103,7 @@ inline SurfaceMesh mesh_sample(std::uint64_t run_id, std::size_t n) {
   m.z_m = doubles(n, 3);
   m.facet_nodes = ids(4 * n, 5);
   for (std::size_t i = 0; i < n; ++i) m.facet_tags.push_back(static_cast<FacetTag>(i % kFacetTagCount));
+  m.node_mass_kg = doubles(n, 6);
   return m;
 }
 inline SurfaceKinematics kinematics_sample(std::uint64_t run_id, std::uint64_t step, std::size_t n) {
@@ -159,6 +160,7 @@ inline void expect_same(const SurfaceMesh& a, const SurfaceMesh& b) {
   EXPECT_EQ(a.z_m, b.z_m);
   EXPECT_EQ(a.facet_nodes, b.facet_nodes);
   EXPECT_TRUE(a.facet_tags == b.facet_tags) << "facet_tags differ";
+  EXPECT_EQ(a.node_mass_kg, b.node_mass_kg);
 }
 inline void expect_same(const SurfaceKinematics& a, const SurfaceKinematics& b) {
   expect_same(a.header, b.header);

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "coupler/facet_geometry.hpp"
+#include "cosim/coupling_window.hpp"
 #include "coupler/forces.hpp"
 #include "coupler/friction.hpp"
 #include "coupler/wire.hpp"
@@ -19,10 +20,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 namespace sc = cosim::scene;
 
+// The terrain the tyre meets, from its material (the scene's blocks, filled by coupling.terrain).
 TerrainKind terrain_kind(const sc::Scene& scene) {
-  for (const auto& b : scene.sph().blocks())
+  bool hard = false;
+  for (const auto& b : scene.sph().blocks()) {
     if (b.material().has_water()) return TerrainKind::water;
-  return scene.coupling().terrain().find("hard") != std::string::npos ? TerrainKind::snow_hard : TerrainKind::snow_soft;
+    hard = hard || b.material().snow().snow_class() == sc::HARD_SNOW;
+  }
+  return hard ? TerrainKind::snow_hard : TerrainKind::snow_soft;
 }
 
 FrictionRules friction_rules(const cosim::LoadedScene& loaded) {
@@ -85,17 +90,28 @@ nlohmann::json run_hub(Session& session, const cosim::LoadedScene& loaded, const
         {tp::Role::tyre, tp::Role::terrain}, 0.0,
         {mesh_in.get(), tyre_kinematics_in.get(), wheel_in.get(), terrain_kinematics_out.get(),
          terrain_loads_in.get(), tyre_loads_out.get()});
-    // One common step: the smaller of the two solvers' stable steps.
-    const double dt = joined.agreed_time_step_s;
-    if (!(dt > 0)) throw cosim::Error("the tyre and the terrain proposed no time step");
-    session.announce_start(dt, "common step: the smaller stable step");
-    summary["time_step"] = {{"agreed_dt_s", dt}, {"tyre_proposed_dt_s", joined.peer_time_step_s[0]},
-                            {"terrain_proposed_dt_s", joined.peer_time_step_s[1]},
-                            {"scheme", "one common step, every step exchanged (no sub-cycling)"}};
+    // The coupling window (docs/coupling.md): the terrain's stable step, the
+    // tyre sub-cycling inside it (multi-rate), or the smaller of the two steps
+    // for both (the common-step reference).
+    const double tyre_dt = joined.peer_time_step_s[0], terrain_dt = joined.peer_time_step_s[1];
+    if (!(tyre_dt > 0) || !(terrain_dt > 0))
+      throw cosim::Error("the tyre (" + cosim::number_text(tyre_dt) + " s) and the terrain (" +
+                         cosim::number_text(terrain_dt) + " s) must both propose a stable step");
+    const bool common_step = c.scheme() == sc::COMMON_STEP;
+    const double dt = common_step ? std::min(tyre_dt, terrain_dt) : terrain_dt;
+    const int substeps = cosim::substeps_per_window(dt, tyre_dt);
+    session.announce_start(dt, common_step ? "common step: the smaller stable step"
+                                           : "multi-rate: the terrain's step, the tyre sub-cycles");
+    summary["time_step"] = {{"agreed_dt_s", dt}, {"coupling_window_s", dt}, {"tyre_substeps", substeps},
+                            {"tyre_proposed_dt_s", tyre_dt}, {"terrain_proposed_dt_s", terrain_dt},
+                            {"scheme", common_step ? "common step: one step for both, every step exchanged"
+                                                   : "multi-rate: one exchange per terrain step, the tyre sub-cycles "
+                                                     "with the terrain's loads held"}};
     summary["friction"] = {{"terrain", terrain_kind_name(terrain)}, {"tread_has_sipes", sipes},
                            {"base", rules.base_mu}, {"sipe_equivalent_on_tread_top", rules.sipe_equivalent_mu}};
-    if (!options.quiet) std::fprintf(stderr, "[coupler] started: dt = %.4g s (tyre %.4g s, terrain %.4g s)\n", dt,
-                                     joined.peer_time_step_s[0], joined.peer_time_step_s[1]);
+    if (!options.quiet)
+      std::fprintf(stderr, "[coupler] started: window %.4g s, %d tyre sub-steps (tyre %.4g s, terrain %.4g s)\n", dt,
+                   substeps, tyre_dt, terrain_dt);
 
     tp::SampleFilter mesh_filter(session.run_id()), tyre_filter(session.run_id()), wheel_filter(session.run_id()),
         terrain_filter(session.run_id());
@@ -214,7 +230,9 @@ nlohmann::json run_hub(Session& session, const cosim::LoadedScene& loaded, const
     }
     for (const auto* f : {&mesh_filter, &tyre_filter, &wheel_filter, &terrain_filter}) session.count_rejections(*f);
     const double wall = seconds_since(start);
-    summary["performance"] = {{"coupler_forwarding_s", exchange_s}, {"steps_per_s", wall > 0 ? step / wall : 0.0}};
+    summary["performance"] = {{"coupler_forwarding_s", exchange_s}, {"steps_per_s", wall > 0 ? step / wall : 0.0},
+                              {"windows_per_s", wall > 0 ? step / wall : 0.0},
+                              {"coupling_window_s", dt}, {"tyre_substeps", substeps}};
     summary["payload"] = {{"mean_surface_nodes_per_step", step ? nodes_sent / step : 0.0},
                           {"mean_surface_facets_per_step", step ? facets_sent / step : 0.0},
                           {"mean_loaded_nodes_per_step", step ? loaded_nodes / step : 0.0}};

@@ -56,6 +56,9 @@ const ContactSurface* DdsSurfaceExchange::surface(std::uint64_t exchange) {
     }
   }
   s.friction_coefficient = k.friction_coefficient;
+  s.node_mass_kg.clear();
+  if (mesh_.node_mass_kg.size() == mesh_.node_ids.size())
+    for (std::uint32_t node : k.nodes) s.node_mass_kg.push_back(mesh_.node_mass_kg[node]);
   s.facet_id.assign(k.facets.begin(), k.facets.end());
   last_exchange_ = exchange;
   last_time_s_ = k.header.sim_time_s;

@@ -16,6 +16,8 @@ void Particles::permute_real(const std::vector<std::uint32_t>& order) {
   permute(material);
   permute(id);
   permute(neighbour_count);
+  permute(active);
+  permute(moving);
 }
 
 }  // namespace snow_sph

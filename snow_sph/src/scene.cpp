@@ -62,6 +62,8 @@ void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepor
   if (!(scene.time().cfl() > 0 && scene.time().cfl() <= 1.0))
     r.fail(time.where("cfl"), "must be in (0, 1] (got " + num(scene.time().cfl()) + ")");
   if (scene.time().fixed_dt_s() < 0) r.fail(time.where("fixed_dt_s"), "must be >= 0");
+  if (scene.sph().cfl() < 0 || scene.sph().cfl() > 1.0)
+    r.fail(root.child("sph").where("cfl"), "must be in (0, 1] (got " + num(scene.sph().cfl()) + ")");
   if (scene.output().vtk_interval_s() < 0)
     r.fail(root.child("output").where("vtk_interval_s"), "must be >= 0");
   if (!scene.has_sph()) return;
@@ -227,7 +229,7 @@ Model build_model(const sc::Scene& scene) {
   Model model;
   model.name = scene.name();
   Settings& st = model.settings;
-  st.cfl = scene.time().cfl();
+  st.cfl = sph.cfl() > 0 ? sph.cfl() : scene.time().cfl();
   st.fixed_dt = scene.time().fixed_dt_s();
   st.end_time = scene.time().end_time_s();
   st.max_steps = scene.time().max_steps();

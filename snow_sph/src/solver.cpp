@@ -59,13 +59,34 @@ double Solver::stability_limit_dt() const {
   return limit;
 }
 
+std::string Solver::limit_cause() const {
+  // The particle that sets the limit, and by which criterion.
+  const Particles& p = m_.particles;
+  const double h = m_.kernel.h;
+  double limit = 1e30;
+  std::string cause = "contact penalty";
+  for (std::size_t i = 0; i < p.n_real; ++i) {
+    const double v = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+    const double a = std::sqrt(p.ax[i] * p.ax[i] + p.ay[i] * p.ay[i] + p.az[i] * p.az[i]);
+    const std::string where = "particle " + std::to_string(p.id[i]) + " at (" + cosim::number_text(p.x[i]) + ", " +
+                              cosim::number_text(p.y[i]) + ", " + cosim::number_text(p.z[i]) + ") m";
+    if (h / (p.sound_speed[i] + v) < limit)
+      limit = h / (p.sound_speed[i] + v), cause = "sound speed " + cosim::number_text(p.sound_speed[i]) +
+                                                  " m/s + speed " + cosim::number_text(v) + " m/s of " + where;
+    if (a > 0 && std::sqrt(h / a) < limit)
+      limit = std::sqrt(h / a), cause = "acceleration " + cosim::number_text(a) + " m/s^2 of " + where;
+  }
+  return cause;
+}
+
 double Solver::stable_dt() const {
   const double limit = stability_limit_dt();
+  smallest_limit_dt_ = std::min(smallest_limit_dt_, limit);
   if (m_.settings.fixed_dt > 0.0) {
     if (m_.settings.fixed_dt > limit)
-      throw cosim::Error("time.fixed_dt_s = " + std::to_string(m_.settings.fixed_dt) +
-                         " s exceeds the stable limit " + std::to_string(limit) + " s at t = " +
-                         std::to_string(time_) + " s");
+      throw cosim::Error("time.fixed_dt_s = " + cosim::number_text(m_.settings.fixed_dt) +
+                         " s exceeds the stable limit " + cosim::number_text(limit) + " s at t = " +
+                         cosim::number_text(time_) + " s (" + limit_cause() + ")");
     return m_.settings.fixed_dt;
   }
   return m_.settings.cfl * limit;
@@ -106,6 +127,7 @@ void Solver::rebuild_if_needed(bool force) {
   ref_y_.assign(p.y.begin(), p.y.begin() + p.n_real);
   ref_z_.assign(p.z.begin(), p.z.begin() + p.n_real);
   ++rebuilds_;
+  if (domain_) rebuild_lists();  // particles were reordered and ghosts made
 }
 
 // Velocity gradient L_i = (1/rho_i) sum_j m_j (v_j - v_i) (x) grad_i W_ij and
@@ -132,7 +154,7 @@ void Solver::compute_rates_t() {
   const auto* off = list_.offsets.data();
   const auto* nb = list_.index.data();
   const double* is_water = is_water_.data();
-  cosim::parallel_for("sph.rates", p.n_real, [&](std::size_t i) {
+  for_active("sph.rates", [&](std::size_t i) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
     const double vxi = p.vx[i], vyi = p.vy[i], vzi = p.vz[i];
     const MaterialModel& mi = m_.materials[p.material[i]];
@@ -208,7 +230,7 @@ void Solver::compute_rates_t() {
 void Solver::update_materials(double dt) {
   Particles& p = m_.particles;
   const double eps_as = m_.settings.artificial_stress_epsilon;
-  cosim::parallel_for("sph.material", p.n_real, [&](std::size_t i) {
+  for_active("sph.material", [&](std::size_t i) {
     const MaterialModel& mat = m_.materials[p.material[i]];
     const double rho_old = p.density[i];
     const double rho = rho_old + dt * p.density_rate[i];
@@ -302,7 +324,9 @@ void Solver::compute_forces_t() {
   const double* rxx = rxx_.data(); const double* ryy = ryy_.data(); const double* rzz = rzz_.data();
   const double* rxy = rxy_.data(); const double* ryz = ryz_.data(); const double* rxz = rxz_.data();
   const double* water_viscosity = water_viscosity_.data();
-  cosim::parallel_for("sph.forces", p.n_real, [&](std::size_t i) {
+  const bool domain = domain_;
+  const double* frozen = frozen_.data();
+  for_active("sph.forces", [&](std::size_t i) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
     const double vxi = p.vx[i], vyi = p.vy[i], vzi = p.vz[i];
     const double rhoi = p.density[i], ci = p.sound_speed[i];
@@ -376,6 +400,22 @@ void Solver::compute_forces_t() {
         const double coef = pm[j] * mu_sum / (rhoi * prho[j]) * (rx * rx + ry * ry + rz * rz) * f * pinvi[e];
         vx_ += coef * (vxi - pvx[j]), vy_ += coef * (vyi - pvy[j]), vz_ += coef * (vzi - pvz[j]);
       }
+    }
+    if (domain) {
+      // Stress of resting (inactive) neighbours on this particle: the part of
+      // the pair force that no moving particle's stress power balances, so its
+      // work is external work of the resting terrain (docs/coupling.md).
+      double bx = 0, by = 0, bz = 0;
+#pragma omp simd reduction(+ : bx, by, bz)
+      for (int e = 0; e < n_pairs; ++e) {
+        const std::uint32_t j = nbi[e];
+        const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
+        const double w = frozen[j] * pm[j] * pfi[e];
+        bx += w * (qxx[j] * rx + qxy[j] * ry + qxz[j] * rz);
+        by += w * (qxy[j] * rx + qyy[j] * ry + qyz[j] * rz);
+        bz += w * (qxz[j] * rx + qyz[j] * ry + qzz[j] * rz);
+      }
+      boundary_power_[i] = p.mass[i] * (vxi * bx + vyi * by + vzi * bz);
     }
     // Quasi-static damping (dynamic relaxation), counted as viscous.
     vx_ -= damping * vxi, vy_ -= damping * vyi, vz_ -= damping * vzi;
@@ -456,14 +496,27 @@ double Solver::surface_contact_limit_dt() const {
 }
 
 void Solver::exchange_surface(std::uint64_t exchange, double dt) {
-  surface_power_ = 0.0;
   const double t0 = omp_get_wtime();
   const ContactSurface* surface = exchange_->surface(exchange);
   exchange_wait_s_ += omp_get_wtime() - t0;
+  last_surface_ = surface;
   if (!surface) {
     stopped_ = true;
     return;
   }
+  if (exchange == 0) {
+    // Multi-rate: the owner holds these loads over the window (docs/coupling.md).
+    held_load_limit_dt_ = held_load_window_limit(*surface, surface_params_.stiffness_N_per_m, m_.settings.spacing);
+    if (dt > held_load_limit_dt_)
+      throw cosim::Error("the coupling window " + cosim::number_text(dt) + " s is above the limit " +
+                         cosim::number_text(held_load_limit_dt_) + " s for holding the contact loads on the "
+                         "surface's lightest node per area (docs/coupling.md); use coupling.scheme: COMMON_STEP "
+                         "or a softer coupling.contact_stiffness_scale");
+  }
+  // The owner sent this surface after completing the window of the last
+  // exchange, whose loads the last kick gave the particles: that window counts.
+  if (exchange > 0)
+    for (int c = 0; c < 3; ++c) surface_impulse_[c] += last_kick_ * surface_force_[c];
   Particles& p = m_.particles;
   const std::size_t n = p.n_real;
   a_before_.resize(3 * n);
@@ -472,19 +525,24 @@ void Solver::exchange_surface(std::uint64_t exchange, double dt) {
   surface_contact(*surface, surface_params_, n, p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(),
                   p.vz.data(), p.mass.data(), dt, p.ax.data(), p.ay.data(), p.az.data(), surface_loads_,
                   &friction_history_, p.id.data());
-  // Power of the surface on the particles (external work of the terrain model).
-  double power = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-    power += p.mass[i] * ((p.ax[i] - a_before_[3 * i]) * p.vx[i] + (p.ay[i] - a_before_[3 * i + 1]) * p.vy[i] +
-                          (p.az[i] - a_before_[3 * i + 2]) * p.vz[i]);
-  surface_power_ = power;
+  // The force of the surface on each particle, kept for the work it does over
+  // the next kick (step()), and its total (momentum exchanged with the owner).
+  double fx = 0.0, fy = 0.0, fz = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dfx = p.mass[i] * (p.ax[i] - a_before_[3 * i]), dfy = p.mass[i] * (p.ay[i] - a_before_[3 * i + 1]),
+                 dfz = p.mass[i] * (p.az[i] - a_before_[3 * i + 2]);
+    a_before_[3 * i] = dfx, a_before_[3 * i + 1] = dfy, a_before_[3 * i + 2] = dfz;
+    fx += dfx, fy += dfy, fz += dfz;
+  }
+  surface_force_[0] = fx, surface_force_[1] = fy, surface_force_[2] = fz;
   const double t1 = omp_get_wtime();
   exchange_->send_loads(exchange, surface_loads_);
   exchange_wait_s_ += omp_get_wtime() - t1;
 }
 
-void Solver::initialise() {
+void Solver::prepare() {
   Particles& p = m_.particles;
+  prepared_ = true;
   w_dx_ = m_.kernel.value(m_.settings.spacing);
   any_artificial_stress_ = false;
   any_water_ = false;
@@ -505,7 +563,18 @@ void Solver::initialise() {
   compute_forces();
   wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), wall_power_.data());
   compute_contact(1e-30 + stable_dt());
+}
+
+void Solver::initialise() {
+  if (!prepared_) prepare();
   if (exchange_) exchange_surface(0, stable_dt());
+  if (domain_) {
+    // Every particle's acceleration is that of the state at t_0 (prepare()), so
+    // those inside the domain move from the first step.
+    update_activity(last_surface_);
+    for (std::size_t i = 0; i < m_.particles.n_real; ++i) m_.particles.moving[i] = m_.particles.active[i];
+    rebuild_lists();
+  }
   energy_ = EnergyBalance{};
   energy_.contact_elastic = 0.0;
   update_energy(0.0);
@@ -516,12 +585,16 @@ void Solver::update_energy(double dt) {
   const Particles& p = m_.particles;
   double ke = 0, el = 0, ip = 0, vp = 0, pl = 0, gw = 0;
   const double* g = m_.settings.gravity;
+  // Resting particles (outside the active domain) have v = 0 and no stress
+  // power this step; their entries of the per-step arrays are stale.
+  double bp = 0.0;
+  if (domain_)
+    for (std::uint32_t i : force_list_)
+      ip += stress_power_[i], vp += viscous_power_[i], pl += plastic_increment_[i], bp += boundary_power_[i];
   for (std::size_t i = 0; i < p.n_real; ++i) {
     const double m = p.mass[i];
     ke += 0.5 * m * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
-    ip += stress_power_[i];
-    vp += viscous_power_[i];
-    pl += plastic_increment_[i];
+    if (!domain_) ip += stress_power_[i], vp += viscous_power_[i], pl += plastic_increment_[i];
     gw += m * (g[0] * p.vx[i] + g[1] * p.vy[i] + g[2] * p.vz[i]) + wall_power_[i];
     const MaterialModel& mat = m_.materials[p.material[i]];
     if (mat.kind == MaterialModel::Kind::water) {
@@ -549,7 +622,65 @@ void Solver::update_energy(double dt) {
   energy_.internal += ip * dt;
   energy_.viscous_dissipation += vp * dt;
   energy_.plastic_dissipation += pl;
-  energy_.external_work += (gw + body_work + surface_power_) * dt;
+  energy_.external_work += (gw + body_work + bp) * dt;
+}
+
+void Solver::set_active_domain(double margin_m, double wake_speed_m_per_s) {
+  active_margin_m_ = margin_m;
+  wake_speed_ = wake_speed_m_per_s;
+  domain_ = exchange_ != nullptr && margin_m > 0.0;
+}
+
+template <class Body>
+void Solver::for_active(const char* label, Body&& body) {
+  if (domain_)
+    cosim::parallel_for(label, force_list_.size(), [&](std::size_t k) { body(force_list_[k]); });
+  else
+    cosim::parallel_for(label, m_.particles.n_real, body);
+}
+
+void Solver::rebuild_lists() {
+  Particles& p = m_.particles;
+  force_list_.clear(), move_list_.clear();
+  for (std::size_t i = 0; i < p.n_real; ++i) {
+    if (p.active[i]) force_list_.push_back(static_cast<std::uint32_t>(i));
+    if (p.moving[i]) move_list_.push_back(static_cast<std::uint32_t>(i));
+  }
+  frozen_.resize(p.size());
+  boundary_power_.resize(p.n_real, 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    frozen_[i] = p.active[i < p.n_real ? i : p.ghost_source[i]] ? 0.0 : 1.0;
+}
+
+void Solver::update_activity(const ContactSurface* surface) {
+  Particles& p = m_.particles;
+  // The box of the surface near the terrain, grown by the margin.
+  double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
+  if (surface)
+    for (std::size_t k = 0; k < surface->x.size(); ++k) {
+      const double c[3] = {surface->x[k], surface->y[k], surface->z[k]};
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a] - active_margin_m_), hi[a] = std::max(hi[a], c[a] + active_margin_m_);
+    }
+  const double wake2 = wake_speed_ * wake_speed_;
+  double removed = 0.0;
+  for (std::size_t i = 0; i < p.n_real; ++i) {
+    const double v2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i];
+    const bool inside = p.x[i] >= lo[0] && p.x[i] <= hi[0] && p.y[i] >= lo[1] && p.y[i] <= hi[1] &&
+                        p.z[i] >= lo[2] && p.z[i] <= hi[2];
+    const bool next = inside || (p.active[i] && v2 > wake2);
+    if (p.active[i] && !next) {
+      // Comes to rest where it is: its kinetic energy leaves the balance as a loss.
+      removed += 0.5 * p.mass[i] * v2;
+      p.vx[i] = p.vy[i] = p.vz[i] = 0.0;
+    }
+    // A particle coming in moves from the step after its first force pass.
+    p.moving[i] = p.active[i] && next;
+    p.active[i] = next;
+  }
+  energy_.deactivated_kinetic += removed;
+  rebuild_lists();
+  active_share_sum_ += p.n_real ? double(force_list_.size()) / double(p.n_real) : 1.0;
+  ++active_samples_;
 }
 
 StepStats Solver::step() {
@@ -559,10 +690,35 @@ StepStats Solver::step() {
   stats.dt = dt;
   // Kick: v^{n+1/2} = v^{n-1/2} + a^n (dt_prev + dt)/2 (first step: half kick).
   const double kick = steps_ == 0 ? 0.5 * dt : 0.5 * (dt_prev_ + dt);
-  cosim::parallel_for("sph.kick_drift", p.n_real, [&](std::size_t i) {
+  auto kick_drift = [&](std::size_t i) {
     p.vx[i] += kick * p.ax[i], p.vy[i] += kick * p.ay[i], p.vz[i] += kick * p.az[i];
     p.x[i] += dt * p.vx[i], p.y[i] += dt * p.vy[i], p.z[i] += dt * p.vz[i];
-  });
+  };
+  // Work of the coupled surface's forces of the last exchange over this kick,
+  // with the mean of the velocities before and after it (the central-difference
+  // work; the velocity before alone books F^2 dt^2 / 2m too little a step, which
+  // grows with the step: docs/coupling.md).
+  if (exchange_ && a_before_.size() >= 3 * p.n_real) {
+    double work = 0.0;
+    const double* df = a_before_.data();
+    auto contact_work = [&](std::size_t i) {
+      const double fx = df[3 * i], fy = df[3 * i + 1], fz = df[3 * i + 2];
+      if (fx == 0.0 && fy == 0.0 && fz == 0.0) return 0.0;
+      const double mx = p.vx[i] + 0.5 * kick * p.ax[i], my = p.vy[i] + 0.5 * kick * p.ay[i],
+                   mz = p.vz[i] + 0.5 * kick * p.az[i];
+      return kick * (fx * mx + fy * my + fz * mz);
+    };
+    if (domain_)
+      for (std::uint32_t i : move_list_) work += contact_work(i);
+    else
+      for (std::size_t i = 0; i < p.n_real; ++i) work += contact_work(i);
+    energy_.external_work += work;
+  }
+  if (domain_)
+    cosim::parallel_for("sph.kick_drift", move_list_.size(), [&](std::size_t k) { kick_drift(move_list_[k]); });
+  else
+    cosim::parallel_for("sph.kick_drift", p.n_real, kick_drift);
+  last_kick_ = kick;
   for (auto& b : m_.bodies) {
     if (b.prescribed_velocity) {
       b.vz = b.prescribed_vz;
@@ -589,7 +745,12 @@ StepStats Solver::step() {
     stats.stopped = stopped_;
   }
   update_energy(dt);
-  for (std::size_t i = 0; i < p.n_real; ++i) interactions_ += p.neighbour_count[i];
+  if (domain_) {
+    for (std::uint32_t i : force_list_) interactions_ += p.neighbour_count[i];
+    update_activity(stats.stopped ? nullptr : last_surface_);
+  } else {
+    for (std::size_t i = 0; i < p.n_real; ++i) interactions_ += p.neighbour_count[i];
+  }
   dt_prev_ = dt;
   ++steps_;
   return stats;

@@ -169,6 +169,26 @@ bool inside_triangle(const V3& q, const V3& a, const V3& b, const V3& c, double 
 
 }  // namespace
 
+double held_load_window_limit(const ContactSurface& surface, double stiffness_N_per_m, double spacing_m) {
+  const std::size_t n = surface.x.size();
+  if (surface.node_mass_kg.size() != n || !(stiffness_N_per_m > 0)) return std::numeric_limits<double>::infinity();
+  std::vector<double> area(n, 0.0);
+  for (std::size_t f = 0; f < surface.facet_count(); ++f) {
+    const std::uint32_t* q = &surface.facet_nodes[4 * f];
+    // Quad area from its diagonals: |d1 x d2| / 2.
+    const double d1[3] = {surface.x[q[2]] - surface.x[q[0]], surface.y[q[2]] - surface.y[q[0]], surface.z[q[2]] - surface.z[q[0]]};
+    const double d2[3] = {surface.x[q[3]] - surface.x[q[1]], surface.y[q[3]] - surface.y[q[1]], surface.z[q[3]] - surface.z[q[1]]};
+    const double c[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
+    const double quarter = 0.125 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    for (int a = 0; a < 4; ++a) area[q[a]] += quarter;
+  }
+  double limit = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < n; ++a)
+    if (area[a] > 0 && surface.node_mass_kg[a] > 0)
+      limit = std::min(limit, spacing_m * std::sqrt(2.0 * surface.node_mass_kg[a] / (stiffness_N_per_m * area[a])));
+  return limit;
+}
+
 double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N_per_m) {
   if (!(stiffness_N_per_m > 0)) return std::numeric_limits<double>::infinity();
   return 2.0 * std::sqrt(min_particle_mass_kg / stiffness_N_per_m);

@@ -66,6 +66,7 @@ void view(const SurfaceMesh& s, cosim_wire_SurfaceMesh& w, Scratch& scratch) {
   for (std::size_t i = 0; i < s.facet_tags.size(); ++i)
     scratch.facet_tags[i] = static_cast<cosim_wire_FacetTag>(s.facet_tags[i]);
   view_seq(scratch.facet_tags, w.facet_tags);
+  view_seq(s.node_mass_kg, w.node_mass_kg);
 }
 void from_wire(const cosim_wire_SurfaceMesh& w, SurfaceMesh& s) {
   from_wire(w.header, s.header);
@@ -76,6 +77,7 @@ void from_wire(const cosim_wire_SurfaceMesh& w, SurfaceMesh& s) {
   from_seq(w.facet_nodes, s.facet_nodes);
   s.facet_tags.resize(w.facet_tags._length);
   for (std::size_t i = 0; i < s.facet_tags.size(); ++i) s.facet_tags[i] = static_cast<FacetTag>(w.facet_tags._buffer[i]);
+  from_seq(w.node_mass_kg, s.node_mass_kg);
 }
 
 void view(const SurfaceKinematics& s, cosim_wire_SurfaceKinematics& w, Scratch&) {

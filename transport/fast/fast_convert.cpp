@@ -40,6 +40,7 @@ void to_wire(const SurfaceMesh& s, cosim_wire::SurfaceMesh& w) {
   w.facet_tags().resize(s.facet_tags.size());
   for (std::size_t i = 0; i < s.facet_tags.size(); ++i)
     w.facet_tags()[i] = static_cast<cosim_wire::FacetTag>(s.facet_tags[i]);
+  w.node_mass_kg() = s.node_mass_kg;
 }
 void from_wire(cosim_wire::SurfaceMesh& w, SurfaceMesh& s) {
   from_wire(w.header(), s.header);
@@ -51,6 +52,7 @@ void from_wire(cosim_wire::SurfaceMesh& w, SurfaceMesh& s) {
   s.facet_tags.resize(w.facet_tags().size());
   for (std::size_t i = 0; i < s.facet_tags.size(); ++i)
     s.facet_tags[i] = static_cast<FacetTag>(w.facet_tags()[i]);
+  s.node_mass_kg = std::move(w.node_mass_kg());
 }
 
 void to_wire(const SurfaceKinematics& s, cosim_wire::SurfaceKinematics& w) {

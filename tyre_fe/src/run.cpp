@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cosim/coupling_window.hpp"
 #include "cosim/error.hpp"
 #include "cosim/interrupt.hpp"
 #include "cosim/outputs.hpp"
@@ -225,15 +226,21 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       s.rim.z += lift;
       s.road.height_m = 0.0;  // heights below are measured from the terrain surface
       s.terrain.port = options.terrain;
-      s.terrain.surface = make_contact_surface(model.mesh);
+      s.terrain.surface = make_contact_surface(model);
       if (!options.quiet)
         std::fprintf(stderr, "[%s] joining the terrain and the coupler (%zu surface facets)\n", scene.name().c_str(),
                      s.terrain.surface.facet_count());
-      s.dt_s = options.terrain->connect(s.terrain.surface, s.dt_s);
+      // The coupler answers with the coupling window; the tyre fills it with
+      // equal sub-steps no larger than its own stable step (one in the common-step scheme).
+      const double window = options.terrain->connect(s.terrain.surface, s.dt_s);
+      s.terrain.substeps = cosim::substeps_per_window(window, s.dt_s);
+      s.dt_s = s.terrain.substeps == 1 ? window : window / s.terrain.substeps;
       s.time_stages = true;  // the exchange's share of the wall time (summary "performance")
       coupled_from_step = s.step;
       coupled_from_wall = wall();
       summary["coupled_dt_s"] = s.dt_s;
+      summary["coupling_window_s"] = window;
+      summary["tyre_substeps"] = s.terrain.substeps;
       results["coupled_time_step_s"] = s.dt_s;
     }
     if (st.loading_s() > 0) {
@@ -350,6 +357,12 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       const double coupled_steps = double(s.step - coupled_from_step);
       const double compute = st.internal_forces_s + st.contact_s + st.rest_s;
       summary["performance"]["coupled_steps"] = s.step - coupled_from_step;
+      summary["performance"]["coupling_windows"] = s.terrain.exchange;
+      summary["performance"]["coupling_window_s"] = summary["coupling_window_s"];
+      summary["performance"]["tyre_substeps"] = s.terrain.substeps;
+      // What the terrain's loads gave the tyre over the run (the terrain books the same).
+      const double* impulse = s.terrain.impulse_Ns;
+      results["terrain_impulse_Ns"] = {impulse[0], impulse[1], impulse[2]};
       summary["performance"]["coupled_wall_s"] = wall() - coupled_from_wall;
       summary["performance"]["exchange_wait_s"] = st.exchange_s;
       summary["performance"]["compute_s"] = compute;

@@ -238,10 +238,25 @@ double rim_update(const Model3d& m, State3d& s, const RimDrive& d) {
   return power;
 }
 
-// Stage 4b: loads of a terrain solver on the surface nodes (sent at the start of the step).
-double terrain_contact(State3d& s) {
+// Exchange stage, out (window start only): the surface at t_n to the terrain.
+void send_surface(const Model3d& m, State3d& s) {
   TerrainCoupling& t = s.terrain;
-  t.port->receive(t.exchange, t.loads);
+  if (t.substep != 0) return;
+  t.port->send(t.exchange, s, m);
+  // The last window is complete (the terrain books it on this surface too).
+  for (int c = 0; c < 3; ++c) t.impulse_Ns[c] += t.window_impulse_Ns[c], t.window_impulse_Ns[c] = 0.0;
+}
+
+// Exchange stage, in (window start only): the terrain's loads of t_n, held
+// for the window's sub-steps (zero-order hold; docs/coupling.md).
+void receive_loads(State3d& s) {
+  TerrainCoupling& t = s.terrain;
+  if (t.substep == 0) t.port->receive(t.exchange, t.loads);
+}
+
+// Stage 4b: the held loads of the terrain on the surface nodes.
+double terrain_loads(State3d& s) {
+  TerrainCoupling& t = s.terrain;
   double power = 0.0;
   const TerrainLoads& l = t.loads;
   for (std::size_t k = 0; k < l.surface_nodes.size(); ++k) {
@@ -249,7 +264,9 @@ double terrain_contact(State3d& s) {
     s.fx[i] += l.fx_N[k], s.fy[i] += l.fy_N[k], s.fz[i] += l.fz_N[k];
     power += l.fx_N[k] * s.vx[i] + l.fy_N[k] * s.vy[i] + l.fz_N[k] * s.vz[i];
   }
-  ++t.exchange;
+  t.window_impulse_Ns[0] += s.dt_s * l.total_x_N, t.window_impulse_Ns[1] += s.dt_s * l.total_y_N;
+  t.window_impulse_Ns[2] += s.dt_s * l.total_z_N;
+  if (++t.substep == t.substeps) t.substep = 0, ++t.exchange;
   return power;
 }
 
@@ -259,7 +276,7 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   const double dt = s.dt_s;
   const double t0 = s.time_stages ? omp_get_wtime() : 0.0;
   // The terrain works on the surface at t_n while the element forces are computed.
-  if (s.terrain.port) s.terrain.port->send(s.terrain.exchange, s, m);
+  if (s.terrain.port) send_surface(m, s);
   const double t_sent = s.time_stages ? omp_get_wtime() : 0.0;
   element_forces(m, s);
   gather_forces(m, s);
@@ -268,7 +285,10 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   const double t2 = s.time_stages ? omp_get_wtime() : 0.0;
   double contact_power = road_contact(m, s);
   const double t3 = s.time_stages ? omp_get_wtime() : 0.0;
-  if (s.terrain.port) contact_power += terrain_contact(s);
+  if (s.terrain.port) {
+    receive_loads(s);
+    contact_power += terrain_loads(s);
+  }
   const double t3b = s.time_stages ? omp_get_wtime() : 0.0;
   // Mass-proportional damping on the free nodes (dynamic relaxation).
   double damping_power = 0.0;

@@ -22,4 +22,10 @@ ContactSurfaceDef make_contact_surface(const Mesh3D& mesh) {
   return surface;
 }
 
+ContactSurfaceDef make_contact_surface(const Model3d& model) {
+  ContactSurfaceDef surface = make_contact_surface(model.mesh);
+  for (int n : surface.node_ids) surface.node_mass_kg.push_back(model.node_mass_kg[n]);
+  return surface;
+}
+
 }  // namespace tyre_fe

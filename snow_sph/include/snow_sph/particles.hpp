@@ -23,6 +23,9 @@ struct Particles {
   std::vector<std::uint16_t> material;     // index into Model::materials
   std::vector<std::uint32_t> id;           // stable particle id (output)
   std::vector<std::uint32_t> neighbour_count;
+  // Active terrain domain (solver.hpp): 1 if the particle's forces and state are
+  // computed this step; 1 in `moving` if it is also moved (kick and drift).
+  std::vector<std::uint8_t> active, moving;
 
   // Ghost bookkeeping: source particle and which planes it is mirrored over.
   std::vector<std::uint32_t> ghost_source;
@@ -35,6 +38,8 @@ struct Particles {
     material.resize(n, 0);
     id.resize(n, 0);
     neighbour_count.resize(n, 0);
+    active.resize(n, 1);
+    moving.resize(n, 1);
     ghost_source.resize(n, 0);
     ghost_planes.resize(n, 0);
   }

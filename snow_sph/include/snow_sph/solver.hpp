@@ -9,6 +9,7 @@
 // diffusion (Molteni & Colagrossi 2009, hydrostatic part removed as in
 // Fourtakas et al. 2019).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "snow_sph/model.hpp"
@@ -25,13 +26,16 @@ struct EnergyBalance {
   double viscous_dissipation = 0.0;  // artificial and physical viscosity
   double contact_dissipation = 0.0;  // friction and contact damping
   double contact_elastic = 0.0;      // stored in penalty springs
-  double external_work = 0.0;        // gravity, applied loads, prescribed motions
+  double external_work = 0.0;        // gravity, applied loads, prescribed motions,
+                                     // the coupled surface, the resting (inactive) terrain
+  // Kinetic energy of particles that left the active domain (set at rest there).
+  double deactivated_kinetic = 0.0;
   double initial_total = 0.0;
   // Abaqus-style balance: KE + IE + VD + FD + contact - W, relative to the
   // largest of KE, IE, W.
   double total() const {
-    return kinetic + internal + viscous_dissipation + contact_dissipation + contact_elastic -
-           external_work;
+    return kinetic + internal + viscous_dissipation + contact_dissipation + contact_elastic +
+           deactivated_kinetic - external_work;
   }
   double relative_error() const;
 };
@@ -56,8 +60,30 @@ class Solver {
   // Wall time spent waiting for the coupled surface and handing back the loads [s].
   double exchange_wait_s() const { return exchange_wait_s_; }
   bool stopped() const { return stopped_; }
+  // Impulse of the coupled surface on the particles [N s], over the exchanges
+  // whose window the surface's owner completed (it sent the next surface).
+  const double* surface_impulse_Ns() const { return surface_impulse_; }
 
-  // Computes the initial accelerations; call once before step().
+  // Active terrain domain (as Chrono's CRM "active domains"; docs/coupling.md):
+  // with a coupled surface and margin_m > 0, only particles within margin_m of
+  // the box around the surface sent (the tyre below its contact band), or still
+  // faster than wake_speed, are integrated. The others keep their state
+  // (stress, density, hardening) at rest and act on active neighbours as a
+  // resting boundary, whose work is booked as external work. A particle that
+  // comes into the domain has its forces computed for one step before it moves.
+  // Call before initialise().
+  void set_active_domain(double margin_m, double wake_speed_m_per_s);
+  // The largest window over which the surface's owner may hold the loads (exchange 0).
+  double held_load_limit_dt() const { return held_load_limit_dt_; }
+  std::size_t active_particles() const { return force_list_.size(); }
+  double mean_active_share() const { return active_samples_ ? active_share_sum_ / active_samples_ : 1.0; }
+
+  // Computes the initial stress state, sound speeds and accelerations, so that
+  // stability_limit_dt() is that of the first step (a coupled terrain proposes
+  // its step from it); initialise() calls it if it was not called.
+  void prepare();
+  // Makes exchange 0 with a coupled surface and starts the energy balance;
+  // call once before step().
   void initialise();
   // Advances one step of size stable_dt() (or the fixed step).
   StepStats step();
@@ -66,6 +92,8 @@ class Solver {
   std::uint64_t steps() const { return steps_; }
   double stable_dt() const;             // with the CFL factor
   double stability_limit_dt() const;    // Courant number 1: a fixed step above it is refused
+  std::string limit_cause() const;      // what sets stability_limit_dt(), for messages
+  double smallest_limit_dt() const { return smallest_limit_dt_; }  // over the steps taken
   const EnergyBalance& energy() const { return energy_; }
   const NeighbourList& neighbours() const { return list_; }
   std::uint64_t interactions() const { return interactions_; }
@@ -86,6 +114,10 @@ class Solver {
   // Exchange n with the coupled surface: contact forces into a, their power into the balance.
   void exchange_surface(std::uint64_t exchange, double dt);
   void update_energy(double dt);
+  // Active domain: which particles are computed and moved next step.
+  void update_activity(const ContactSurface* surface);
+  void rebuild_lists();
+  template <class Body> void for_active(const char* label, Body&& body);
 
   Model& m_;
   NeighbourList list_;
@@ -110,10 +142,26 @@ class Solver {
   SurfaceContactParameters surface_params_;
   SurfaceLoads surface_loads_;
   FrictionHistory friction_history_;  // elastic sticks, keyed by the stable particle id
-  std::vector<double> a_before_;  // accelerations before the surface contact (its power)
-  double surface_power_ = 0.0;
+  // Accelerations before the surface contact, then the surface's force per
+  // particle [N] (its work over the next kick).
+  std::vector<double> a_before_;
   double exchange_wait_s_ = 0.0;
   bool stopped_ = false;
+  bool prepared_ = false;
+  mutable double smallest_limit_dt_ = 1e30;
+  double held_load_limit_dt_ = 0.0;
+  const ContactSurface* last_surface_ = nullptr;
+  double surface_force_[3] = {0, 0, 0};    // on the particles, last exchange
+  double surface_impulse_[3] = {0, 0, 0};  // committed windows
+  double last_kick_ = 0.0;                 // kick factor of the last step
+  // Active domain.
+  double active_margin_m_ = 0.0, wake_speed_ = 0.0;
+  bool domain_ = false;
+  std::vector<std::uint32_t> force_list_, move_list_;
+  std::vector<double> frozen_;          // per particle and ghost: 1 at rest outside the domain
+  std::vector<double> boundary_power_;  // work rate of resting neighbours on an active particle
+  double active_share_sum_ = 0.0;
+  std::uint64_t active_samples_ = 0;
 };
 
 }  // namespace snow_sph

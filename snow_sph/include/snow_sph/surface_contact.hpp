@@ -20,8 +20,21 @@ struct ContactSurface {
   // Each facet's number in the owner's surface (stable from step to step, while
   // the facets sent change), for the friction history; empty: the index here.
   std::vector<std::uint32_t> facet_id;
+  // Lumped mass of each node [kg] as the owner integrates it (empty: not known).
+  std::vector<double> node_mass_kg;
   std::size_t facet_count() const { return facet_nodes.size() / 4; }
 };
+
+// The largest coupling window over which the surface's owner may hold this
+// contact's loads on its nodes (multi-rate coupling; docs/coupling.md,
+// "Stability of the held loads"). A node a carrying mass m_a over the area A_a
+// (a quarter of each facet it belongs to) meets the particles' penalty k per
+// particle, one particle per dx^2 of surface: Gershgorin's bound on the coupled
+// node-particle system gives omega^2 <= 2 k A_a / (m_a dx^2), and central
+// difference with the loads held over the window is stable for omega dt < 2:
+//   dt_w <= sqrt(2 m_a dx^2 / (k A_a)).
+// Returns the smallest over the nodes (infinity without node masses).
+double held_load_window_limit(const ContactSurface& surface, double stiffness_N_per_m, double spacing_m);
 
 // The elastic stick of every particle-facet contact, carried from one call to
 // the next: the tangential spring force and the facet (with its normal then),

@@ -49,6 +49,7 @@ struct SurfaceMesh {
   std::vector<double> x_m, y_m, z_m;       // reference positions per surface node
   std::vector<std::uint32_t> facet_nodes;  // 4 surface-node indices per quad facet
   std::vector<FacetTag> facet_tags;        // one per facet
+  std::vector<double> node_mass_kg;        // lumped mass per surface node
 };
 
 // Per step: surface nodes near the terrain and friction per nearby facet.

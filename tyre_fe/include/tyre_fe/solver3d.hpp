@@ -4,8 +4,9 @@
 // inner liner, a rigid rim (reference node at the wheel centre, free in x, z and
 // rotation about y, ISO 8855) and a flat rigid road with penalty contact and
 // Coulomb friction. A step is a list of stages over explicit state:
-//   element forces -> gather -> pressure -> road contact -> damping
-//   -> rim rigid body -> velocity and position update -> energy.
+//   [window start: send surface] -> element forces -> gather -> pressure
+//   -> road contact -> [window start: receive terrain loads] -> terrain loads
+//   -> damping -> rim rigid body -> velocity and position update -> energy.
 #include <cstdint>
 #include <vector>
 
@@ -54,11 +55,19 @@ struct RoadState {
 };
 
 // A terrain solver behind a port (terrain_port.hpp): its loads replace or join the road.
+// Multi-rate (docs/coupling.md): one exchange per coupling window of
+// `substeps` tyre steps; the loads of the window's start are held over it.
 struct TerrainCoupling {
   TerrainPort* port = nullptr;  // null: no terrain solver
   ContactSurfaceDef surface;
-  std::uint64_t exchange = 0;   // coupled steps taken
-  TerrainLoads loads;           // of the last step
+  std::uint64_t exchange = 0;   // windows exchanged
+  int substeps = 1;             // tyre steps per coupling window
+  int substep = 0;              // position in the current window (0: its start)
+  TerrainLoads loads;           // of the current window
+  // Impulse of the terrain's loads on the tyre [N s]: the held loads times each
+  // sub-step, over the windows completed and followed by the next exchange
+  // (the terrain books the same windows), and over the window under way.
+  double impulse_Ns[3] = {0.0, 0.0, 0.0}, window_impulse_Ns[3] = {0.0, 0.0, 0.0};
 };
 
 struct Energies {
@@ -116,8 +125,9 @@ State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& c
 void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
                 double penalty_scale);
 
-// One explicit step of size s.dt_s. With a terrain port (s.terrain.port) the
-// surface is sent first and the terrain's loads are added to the nodal forces.
+// One explicit step of size s.dt_s. With a terrain port (s.terrain.port), at
+// the start of a coupling window the surface is sent and the terrain's loads
+// received; on every step the loads of the window are added to the nodal forces.
 // Returns false if a value went non-finite.
 bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
 

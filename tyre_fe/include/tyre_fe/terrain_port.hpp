@@ -28,9 +28,12 @@ struct ContactSurfaceDef {
   std::vector<std::uint32_t> facet_nodes;
   std::vector<SurfaceTag> facet_tags;
   std::vector<int> mesh_facets;  // surface facet f is mesh.facets[mesh_facets[f]]
+  std::vector<double> node_mass_kg;  // lumped mass of surface node k (empty: not known)
   std::size_t facet_count() const { return facet_tags.size(); }
 };
 ContactSurfaceDef make_contact_surface(const Mesh3D& mesh);
+// With the lumped masses of the model's nodes.
+ContactSurfaceDef make_contact_surface(const Model3d& model);
 
 // Forces of the terrain on surface nodes (sparse, surface-node indices).
 struct TerrainLoads {
