@@ -2,6 +2,7 @@
 # Speed of the coupled run: the coupling schemes side by side, and the coupling
 # cost per DDS vendor pair.
 #   bench/coupled_bench.sh [--thesis] [--sim-ms T] [--json FILE] [--pairs "fast:cyclone ..."] [--margin M]
+#                          [--set field=value ...]   (passed to both schemes' runs, after --thesis's)
 # Schemes (docs/coupling.md): the same scene runs T simulated milliseconds of
 # coupled stepping with the common step (the reference) and with the
 # multi-rate scheme (one exchange per terrain step, the tyre sub-cycling, the
@@ -26,6 +27,7 @@ PAIRS="cyclone:cyclone"
 JSON=""
 MARGIN=0.1
 SETS=()
+EXTRA=()
 THESIS=0
 while [ $# -gt 0 ]; do
   case $1 in
@@ -41,6 +43,7 @@ while [ $# -gt 0 ]; do
     --json) JSON=$2; shift 2 ;;
     --pairs) PAIRS=$2; shift 2 ;;
     --margin) MARGIN=$2; shift 2 ;;
+    --set) EXTRA+=(--set "$2"); shift 2 ;;
     *) echo "coupled_bench: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -56,7 +59,7 @@ run() {
   # The tyre's step decides how many steps SIM_MS takes: ask it (mesh only).
   local probe=$OUT/$name.probe
   "$BIN/cosim" run "$SCENE" --out "$probe" --quiet --no-vtk --set coupling.terrain=rigid_road --set tyre.mesh_only=true \
-    "${SETS[@]}" "$@" > "$probe.log" 2>&1 || { echo "coupled_bench: mesh probe failed: $probe.log" >&2; tail "$probe.log" >&2; exit 1; }
+    "${SETS[@]}" "${EXTRA[@]}" "$@" > "$probe.log" 2>&1 || { echo "coupled_bench: mesh probe failed: $probe.log" >&2; tail "$probe.log" >&2; exit 1; }
   local steps
   steps=$(python3 - "$probe" "$SIM_MS" "$@" <<'PY'
 import json, math, sys
@@ -67,7 +70,7 @@ PY
 )
   # Enough tyre steps for SIM_MS of coupled stepping after the transfer check.
   "$BIN/cosim" run "$SCENE" --out "$dir" --dds "tyre=$tyre,terrain=$terrain,coupler=$terrain" --domain $domain \
-    --no-vtk --quiet --set time.max_steps=$((steps + 200)) "${SETS[@]}" "$@" > "$dir.log" 2>&1 \
+    --no-vtk --quiet --set time.max_steps=$((steps + 200)) "${SETS[@]}" "${EXTRA[@]}" "$@" > "$dir.log" 2>&1 \
     || { echo "coupled_bench: run failed: $dir.log" >&2; tail "$dir.log" >&2; exit 1; }
 }
 run common_step cyclone:cyclone --set coupling.scheme=COMMON_STEP --set coupling.active_domain_margin_m=0

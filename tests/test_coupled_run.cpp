@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -57,11 +58,28 @@ const std::string kScene = test_support::scene_path("tyre_torque_snow");
 // Column indices of coupler/forces.csv.
 enum Col { time_s, step, f3, f1, f2, f4, rrm, f5, drawbar, net_pressure, traction_minus_rrf, sinkage, area };
 
+// The whole coarse torque scene, multi-rate (the default), tyre on Fast DDS,
+// terrain and coupler on Cyclone DDS; run once for the tests that read it.
+struct CrossVendorRun {
+  std::string dir, out;
+  int code = -1;
+};
+const CrossVendorRun& cross_vendor_run() {
+  static const CrossVendorRun run = [] {
+    CrossVendorRun r;
+    r.dir = test_support::scratch("coupled_cross");
+    std::tie(r.code, r.out) = shell(bin() + "/cosim run " + kScene + " --out " + r.dir +
+                                    " --dds tyre=fast,terrain=cyclone,coupler=cyclone --domain 3 --no-vtk --quiet");
+    return r;
+  }();
+  return run;
+}
+
 TEST(CoupledRun, CrossVendorTorqueSceneWritesTheDecompositionOfEveryStep) {
-  const auto dir = test_support::scratch("coupled_cross");
-  auto [code, out] = shell(bin() + "/cosim run " + kScene + " --out " + dir +
-                           " --dds tyre=fast,terrain=cyclone,coupler=cyclone --domain 3 --no-vtk --quiet");
-  ASSERT_EQ(code, 0) << out;
+  const auto& run = cross_vendor_run();
+  const auto& dir = run.dir;
+  ASSERT_EQ(run.code, 0) << run.out;
+  const auto& out = run.out;
   EXPECT_NE(out.find("coupler (cyclone) + snow_sph (cyclone) + tyre_fe (fast)"), std::string::npos) << out;
   const auto summary = read_json(dir + "/summary.json");
   EXPECT_EQ(summary["status"], "completed");
@@ -69,7 +87,7 @@ TEST(CoupledRun, CrossVendorTorqueSceneWritesTheDecompositionOfEveryStep) {
   EXPECT_EQ(summary["participants"]["tyre_fe"]["dds"], "fast");
   EXPECT_EQ(summary["rejected_samples"]["other_run"], 0);
   EXPECT_EQ(summary["rejected_samples"]["wrong_step"], 0);
-  // One row per coupled step; each row satisfies the thesis's identities
+  // One row per coupling window; each row satisfies the thesis's identities
   // (eq. 2.1: DP = F2 + F3 - F1 - F5; eq. 2.2: net = -F1 + F2).
   const auto rows = lines_of(dir + "/forces.csv");
   ASSERT_GT(rows.size(), 100u);
@@ -96,12 +114,14 @@ TEST(CoupledRun, CrossVendorTorqueSceneWritesTheDecompositionOfEveryStep) {
                         "drawbar_pull_N", "net_longitudinal_pressure_force_N", "sinkage_m", "contact_area_m2"})
     EXPECT_TRUE(summary["results"][k].is_number()) << k;
 
-  // The same scene, all on Fast DDS, for its first steps: identical forces.
+  // The same scene, all on Fast DDS, for its first windows: identical forces.
+  // time.max_steps counts the tyre's sub-steps (8 per window here).
   const auto same = test_support::scratch("coupled_fast");
-  const int compare_steps = 400;
+  const int substeps = summary["performance"]["tyre_substeps"].get<int>();
+  const int compare_windows = 400;
   auto [code2, out2] = shell(bin() + "/cosim run " + kScene + " --out " + same +
                              " --dds fast --domain 4 --no-vtk --quiet --set time.max_steps=" +
-                             std::to_string(compare_steps + 10));
+                             std::to_string(substeps * compare_windows + 200));
   ASSERT_EQ(code2, 0) << out2;
   const auto rows2 = lines_of(same + "/forces.csv");
   ASSERT_GT(rows2.size(), 300u);
@@ -183,3 +203,77 @@ TEST(CoupledRun, KillingTheTerrainStopsTheOthersWithinFiveSecondsAndKeepsTheForc
 }
 
 }  // namespace
+
+namespace {
+
+// Results of a coupled run of the coarse torque scene.
+struct SceneRun {
+  nlohmann::json summary, terrain, tyre;
+};
+
+SceneRun read_run(const std::string& dir) {
+  return {read_json(dir + "/summary.json"), read_json(dir + "/terrain/summary.json"), read_json(dir + "/tyre/summary.json")};
+}
+
+SceneRun run_scene(const std::string& name, int domain, const std::string& sets) {
+  const auto dir = test_support::scratch(name);
+  auto [code, out] = shell(bin() + "/cosim run " + kScene + " --out " + dir + " --dds cyclone --domain " +
+                           std::to_string(domain) + " --no-vtk --quiet" + sets);
+  EXPECT_EQ(code, 0) << out;
+  return read_run(dir);
+}
+
+double relative_difference(double a, double reference) { return std::fabs(a - reference) / std::fabs(reference); }
+
+}  // namespace
+
+// The multi-rate scheme against the common-step reference on the coarse torque
+// scene (docs/coupling.md, "Accuracy of the multi-rate scheme"), and the active
+// terrain domain against all particles active:
+//  - momentum over the windows balances exactly: what the particles received,
+//    the tyre received, to rounding (1e-9 of the vertical impulse: one window
+//    lost or counted twice is 1/3600 of it; rounding over 3600 windows ~1e-13);
+//  - vertical pressure force F4, sinkage and contact area within 2 % of the
+//    common step (the bound; the common-step run itself moves them by
+//    up to 2.0 % with a 5 % smaller step, docs/coupling.md);
+//  - the longitudinal forces are a transient here (the spin collapses under
+//    300 N m, docs/coupling.md), whose means move by 7 % (F3), 6 % (F5) and 20 %
+//    (drawbar pull) between common-step runs that differ only by a 5 % smaller
+//    step: they are compared in docs/coupling.md, not here;
+//  - each solver's energy balance closes as well as before the multi-rate
+//    scheme: the common step's were 2.8-2.9 % (tyre) and 3.2 % (terrain, before
+//    the terrain booked the contact work with the kick's mean velocity), so
+//    3.5 % bounds both; measured now: common step 2.9 % and 0.02 %, multi-rate
+//    1.4 % and 1.0 %;
+//  - the active domain (margin 0.1 m) changes F4, sinkage and area by < 1 %.
+TEST(CoupledRun, MultirateMatchesTheCommonStepAndBalancesMomentum) {
+  ASSERT_EQ(cross_vendor_run().code, 0) << cross_vendor_run().out;
+  const SceneRun multirate = read_run(cross_vendor_run().dir);
+  const SceneRun common = run_scene("coupled_common_step", 11, " --set coupling.scheme=COMMON_STEP");
+  const SceneRun active = run_scene("coupled_active_domain", 12, " --set coupling.active_domain_margin_m=0.1");
+  ASSERT_EQ(common.summary["status"], "completed");
+  ASSERT_EQ(active.summary["status"], "completed");
+  EXPECT_EQ(common.summary["performance"]["tyre_substeps"], 1);
+  EXPECT_GT(multirate.summary["performance"]["tyre_substeps"].get<int>(), 1);
+  EXPECT_EQ(multirate.summary["performance"]["active_particle_share"].get<double>(), 1.0);
+  EXPECT_LT(active.summary["performance"]["active_particle_share"].get<double>(), 1.0);
+  for (const SceneRun* run : {&common, &multirate, &active}) {
+    const auto& on_tyre = run->summary["results"]["tyre"]["terrain_impulse_Ns"];
+    const auto& on_particles = run->terrain["surface_impulse_on_particles_Ns"];
+    ASSERT_GT(on_tyre[2].get<double>(), 100.0);  // the snow carried the tyre
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(on_tyre[c].get<double>(), -on_particles[c].get<double>(), 1e-9 * on_tyre[2].get<double>()) << c;
+    EXPECT_LT(run->tyre["energy"]["relative_error"].get<double>(), 0.035);
+    EXPECT_LT(run->terrain["energy"]["relative_error"].get<double>(), 0.035);
+  }
+  const auto& reference = common.summary["results"];
+  for (const char* key : {"vertical_pressure_force_N", "sinkage_m", "contact_area_m2"}) {
+    EXPECT_LT(relative_difference(multirate.summary["results"][key].get<double>(), reference[key].get<double>()), 0.02)
+        << key << ": multi-rate " << multirate.summary["results"][key] << ", common step " << reference[key];
+    EXPECT_LT(relative_difference(active.summary["results"][key].get<double>(),
+                                  multirate.summary["results"][key].get<double>()),
+              0.01)
+        << key << ": active domain " << active.summary["results"][key] << ", all active "
+        << multirate.summary["results"][key];
+  }
+}

@@ -8,10 +8,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "coupler/session.hpp"
+#include "cosim_coupling/session.hpp"
 #include "cosim/scene_io.hpp"
 
 namespace coupler {
+
+using cosim::coupling::Session;
+namespace tp = cosim::transport;
+using cosim::coupling::channel_qos;
+using cosim::coupling::kTerrainChannel;
+using cosim::coupling::kTyreChannel;
 
 struct HubOptions {
   std::string out_dir;

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "coupler/cli.hpp"
+#include "cosim_coupling/cli.hpp"
 #include "cosim/error.hpp"
 #include "cosim/interrupt.hpp"
 #include "hub.hpp"
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_dir, "output folder");
   app.add_option("--set", sets, "override a scene field: field.path=value");
   app.add_flag("--quiet", quiet, "no progress line");
-  coupler::CouplingCli coupling;
+  cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, false);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
@@ -28,13 +28,13 @@ int main(int argc, char** argv) {
     const auto scene = cosim::load_scene(scene_file, sets);
     if (!scene->message.has_tyre() || !scene->message.has_sph())
       throw cosim::Error(scene_file + ": the coupler needs a scene with a `tyre` and an `sph` terrain");
-    coupler::Session session(coupling.session(coupler::tp::Role::coupler, scene->message));
+    cosim::coupling::Session session(coupling.session(cosim::transport::Role::coupler, scene->message));
     try {
       const auto summary = coupler::run_hub(session, *scene, {out_dir, quiet});
       std::printf("%s\n", summary["results"].dump(2).c_str());
       return 0;
     } catch (const std::exception& e) {
-      coupler::exit_after_failure("coupler", e);
+      cosim::coupling::exit_after_failure("coupler", e);
     }
 
   } catch (const cosim::Error& e) {

@@ -72,7 +72,7 @@ double rolling_resistance_moment(const FacetLoads& loads, double rim_x_m) {
 
 double rolling_resistance_force(double rrm_Nm, double rolling_radius_m) {
   if (!(rolling_radius_m > 0.0) || !std::isfinite(rolling_radius_m))
-    throw cosim::Error("force decomposition: rolling radius " + std::to_string(rolling_radius_m) +
+    throw cosim::Error("force decomposition: rolling radius " + cosim::number_text(rolling_radius_m) +
                        " m must be > 0 (the zero-slip radius L / 2 pi of thesis eq. 5.1)");
   return rrm_Nm / rolling_radius_m;
 }

@@ -9,7 +9,7 @@
 namespace coupler {
 
 namespace {
-std::string num(double v) { return std::to_string(v); }
+std::string num(double v) { return cosim::number_text(v); }
 }  // namespace
 
 void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::ValidationReport& r) {

@@ -4,16 +4,16 @@
 
 namespace snow_sph {
 
-namespace tp = coupler::tp;
+namespace tp = cosim::transport;
 
-DdsSurfaceExchange::DdsSurfaceExchange(coupler::Session& session)
+DdsSurfaceExchange::DdsSurfaceExchange(cosim::coupling::Session& session)
     : session_(session), filter_(session.run_id()), mesh_filter_(session.run_id()) {}
 
 double DdsSurfaceExchange::connect(double proposed_dt_s) {
   auto& p = session_.participant();
   mesh_in_ = p.create_reader<tp::SurfaceMesh>();
-  kinematics_in_ = p.create_reader<tp::SurfaceKinematics>(coupler::channel_qos<tp::SurfaceKinematics>(coupler::kTerrainChannel));
-  loads_out_ = p.create_writer<tp::ContactLoads>(coupler::channel_qos<tp::ContactLoads>(coupler::kTerrainChannel));
+  kinematics_in_ = p.create_reader<tp::SurfaceKinematics>(cosim::coupling::channel_qos<tp::SurfaceKinematics>(cosim::coupling::kTerrainChannel));
+  loads_out_ = p.create_writer<tp::ContactLoads>(cosim::coupling::channel_qos<tp::ContactLoads>(cosim::coupling::kTerrainChannel));
   const tp::HandshakeResult joined =
       session_.join({tp::Role::coupler}, proposed_dt_s, {mesh_in_.get(), kinematics_in_.get(), loads_out_.get()});
   return session_.wait_for_start(joined);

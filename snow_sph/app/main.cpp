@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "coupler/cli.hpp"
+#include "cosim_coupling/cli.hpp"
 #include "cosim/error.hpp"
 #include "dds_surface_exchange.hpp"
 #include "cosim/interrupt.hpp"
@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   app.add_flag("--check", check, "validate the scene and exit");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
-  coupler::CouplingCli coupling;
+  cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
                          "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
     if (coupling.coupled) {
       if (!scene->message.has_tyre()) throw cosim::Error(scene_file + ": a coupled terrain needs a scene with a `tyre`");
-      coupler::Session session(coupling.session(coupler::tp::Role::terrain, scene->message));
+      cosim::coupling::Session session(coupling.session(cosim::transport::Role::terrain, scene->message));
       snow_sph::DdsSurfaceExchange exchange(session);
       snow_sph::RunOptions options{out_dir, quiet, !no_vtk};
       options.exchange = &exchange;
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
         std::printf("%s\n", summary["results"].dump(2).c_str());
         return 0;
       } catch (const std::exception& e) {
-        coupler::exit_after_failure("snow_sph", e);
+        cosim::coupling::exit_after_failure("snow_sph", e);
       }
 
     }

@@ -39,6 +39,8 @@
 //  property of the Abaqus potential, reproduced faithfully, not clipped.
 #include "snow_sph/mdpc.hpp"
 
+#include "cosim/error.hpp"
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -239,7 +241,7 @@ void check_parameters(const MdpcParameters& m) {
           "transition_alpha too large for beta: 1 + alpha - alpha/cos(beta) must be > 0");
   require(m.flow_stress_ratio_K == 1.0,
           "flow_stress_ratio_K must be 1 (the only option in Abaqus/Explicit), got " +
-              std::to_string(m.flow_stress_ratio_K));
+              cosim::number_text(m.flow_stress_ratio_K));
   const auto& P = m.hardening_pressure_Pa;
   const auto& e = m.hardening_volumetric_plastic_strain;
   require(P.size() == e.size(), "hardening tables have unequal lengths (" +

@@ -211,10 +211,10 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
       clamped += st.clamped;
       if (cosim::interrupt_requested())
         throw cosim::Error("interrupted by a signal at step " + std::to_string(solver.steps()) +
-                           ", t = " + std::to_string(solver.time()) + " s");
+                           ", t = " + cosim::number_text(solver.time()) + " s");
       if (!solver.finite())
         throw cosim::Error("the solution became non-finite (NaN/Inf) at step " +
-                           std::to_string(solver.steps()) + ", t = " + std::to_string(solver.time()) + " s");
+                           std::to_string(solver.steps()) + ", t = " + cosim::number_text(solver.time()) + " s");
       record(false);
       if (probe_csv) {
         const double pr = solver.pressure_at(floor_x, floor_y, model.container_min[2]);

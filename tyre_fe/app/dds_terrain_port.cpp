@@ -4,18 +4,18 @@
 
 namespace tyre_fe {
 
-namespace tp = coupler::tp;
+namespace tp = cosim::transport;
 
-DdsTerrainPort::DdsTerrainPort(coupler::Session& session, double contact_band_m)
+DdsTerrainPort::DdsTerrainPort(cosim::coupling::Session& session, double contact_band_m)
     : session_(session), band_m_(contact_band_m), filter_(session.run_id()) {}
 
 double DdsTerrainPort::connect(const ContactSurfaceDef& surface, double proposed_dt_s) {
   surface_ = &surface;
   auto& p = session_.participant();
   mesh_out_ = p.create_writer<tp::SurfaceMesh>();
-  kinematics_out_ = p.create_writer<tp::SurfaceKinematics>(coupler::channel_qos<tp::SurfaceKinematics>(coupler::kTyreChannel));
+  kinematics_out_ = p.create_writer<tp::SurfaceKinematics>(cosim::coupling::channel_qos<tp::SurfaceKinematics>(cosim::coupling::kTyreChannel));
   wheel_out_ = p.create_writer<tp::WheelState>();
-  loads_in_ = p.create_reader<tp::ContactLoads>(coupler::channel_qos<tp::ContactLoads>(coupler::kTyreChannel));
+  loads_in_ = p.create_reader<tp::ContactLoads>(cosim::coupling::channel_qos<tp::ContactLoads>(cosim::coupling::kTyreChannel));
   // The surface, durable: the coupler, the terrain and any late monitor get it.
   tp::SurfaceMesh mesh;
   mesh.header = {session_.run_id(), 0, 0.0};

@@ -4,7 +4,7 @@
 // and takes the contact loads the coupler forwards from the terrain.
 #include <memory>
 
-#include "coupler/session.hpp"
+#include "cosim_coupling/session.hpp"
 #include "tyre_fe/solver3d.hpp"
 #include "tyre_fe/terrain_port.hpp"
 
@@ -13,24 +13,24 @@ namespace tyre_fe {
 class DdsTerrainPort final : public TerrainPort {
  public:
   // Surface facets with a node below `contact_band_m` (terrain surface z = 0) are sent each step.
-  DdsTerrainPort(coupler::Session& session, double contact_band_m);
+  DdsTerrainPort(cosim::coupling::Session& session, double contact_band_m);
   double connect(const ContactSurfaceDef& surface, double proposed_dt_s) override;
   void send(std::uint64_t exchange, const State3d& s, const Model3d& model) override;
   void receive(std::uint64_t exchange, TerrainLoads& loads) override;
   void finish(bool failed, const std::string& reason) override;
 
  private:
-  coupler::Session& session_;
+  cosim::coupling::Session& session_;
   double band_m_;
   const ContactSurfaceDef* surface_ = nullptr;
-  std::unique_ptr<coupler::tp::Writer<coupler::tp::SurfaceMesh>> mesh_out_;
-  std::unique_ptr<coupler::tp::Writer<coupler::tp::SurfaceKinematics>> kinematics_out_;
-  std::unique_ptr<coupler::tp::Writer<coupler::tp::WheelState>> wheel_out_;
-  std::unique_ptr<coupler::tp::Reader<coupler::tp::ContactLoads>> loads_in_;
-  coupler::tp::SampleFilter filter_;
-  coupler::tp::SurfaceMesh mesh_;
-  coupler::tp::SurfaceKinematics kinematics_;
-  coupler::tp::ContactLoads loads_;
+  std::unique_ptr<cosim::transport::Writer<cosim::transport::SurfaceMesh>> mesh_out_;
+  std::unique_ptr<cosim::transport::Writer<cosim::transport::SurfaceKinematics>> kinematics_out_;
+  std::unique_ptr<cosim::transport::Writer<cosim::transport::WheelState>> wheel_out_;
+  std::unique_ptr<cosim::transport::Reader<cosim::transport::ContactLoads>> loads_in_;
+  cosim::transport::SampleFilter filter_;
+  cosim::transport::SurfaceMesh mesh_;
+  cosim::transport::SurfaceKinematics kinematics_;
+  cosim::transport::ContactLoads loads_;
   std::vector<char> node_sent_;
   std::uint64_t last_exchange_ = 0;
 };

@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "coupler/cli.hpp"
+#include "cosim_coupling/cli.hpp"
 #include "cosim/error.hpp"
 #include "cosim/interrupt.hpp"
 #include "tyre_fe/run.hpp"
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   app.add_flag("--mesh-only", mesh_only, "write the meshes and their statistics, do not solve");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
-  coupler::CouplingCli coupling;
+  cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
                          "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
     if (coupling.coupled) {
       const auto& c = scene->message.coupling();
-      coupler::Session session(coupling.session(coupler::tp::Role::tyre, scene->message));
+      cosim::coupling::Session session(coupling.session(cosim::transport::Role::tyre, scene->message));
       tyre_fe::DdsTerrainPort port(session, c.contact_band_m() > 0 ? c.contact_band_m() : 0.12);
       tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
       options.terrain = &port;
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
         std::printf("%s\n", summary["results"].dump(2).c_str());
         return 0;
       } catch (const std::exception& e) {
-        coupler::exit_after_failure("tyre_fe", e);
+        cosim::coupling::exit_after_failure("tyre_fe", e);
       }
 
     }

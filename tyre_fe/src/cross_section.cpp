@@ -121,7 +121,7 @@ CrossSection make_cross_section(const TyreSize& size, const TreadPattern& patter
   };
   const auto outer_y_break = [&](double y) {
     const double u = profile.station_at_y(outer, std::abs(y));
-    if (u < 0) throw cosim::Error("tread pattern: y = " + std::to_string(y) + " m is off the tread");
+    if (u < 0) throw cosim::Error("tread pattern: y = " + cosim::number_text(y) + " m is off the tread");
     breaks.push_back({y < 0 ? -u : u, true});
   };
   outer_y_break(design.tread_half_width);
@@ -129,8 +129,8 @@ CrossSection make_cross_section(const TyreSize& size, const TreadPattern& patter
   for (double yc : pattern.circumferential_groove_y_m) {
     const double hw = 0.5 * pattern.circumferential_groove_width_m;
     if (!(hw > 0) || std::abs(yc) + hw > design.tread_half_width - 1e-6)
-      throw cosim::Error("tread pattern: circumferential groove at y = " + std::to_string(yc) +
-                         " m (width " + std::to_string(2 * hw) + " m) is not inside the tread width");
+      throw cosim::Error("tread pattern: circumferential groove at y = " + cosim::number_text(yc) +
+                         " m (width " + cosim::number_text(2 * hw) + " m) is not inside the tread width");
     outer_y_break(yc - hw);
     outer_y_break(yc + hw);
   }
@@ -221,7 +221,7 @@ CrossSection make_cross_section(const TyreSize& size, const TreadPattern& patter
       const Eigen::Vector2d e1 = b - a, e2 = c - b;
       if (e1.x() * e2.y() - e1.y() * e2.x() <= 0.0)
         throw cosim::Error("tyre cross-section generator: distorted element at r = " +
-                           std::to_string(a.x()) + " m, y = " + std::to_string(a.y()) +
+                           cosim::number_text(a.x()) + " m, y = " + cosim::number_text(a.y()) +
                            " m; this size/pattern is outside what the generator can mesh");
     }
   }

@@ -85,7 +85,7 @@ Hex8Reference hex8_reference(const double X[8][3]) {
     }
   }
   if (!(volume > 0.0))
-    throw cosim::Error("hex8 element has non-positive volume " + std::to_string(volume) +
+    throw cosim::Error("hex8 element has non-positive volume " + cosim::number_text(volume) +
                        " m^3 (inverted or wrong node order)");
   ref.volume_m3 = volume;
 

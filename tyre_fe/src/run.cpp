@@ -128,7 +128,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
     const AxisymResult axi = solve_axisym(section, setup.materials, inflation);
     if (!axi.converged)
       throw cosim::Error("axisymmetric inflation did not come to rest in " + std::to_string(axi.steps) +
-                         " steps (residual ratio " + std::to_string(axi.residual_ratio) + ")");
+                         " steps (residual ratio " + cosim::number_text(axi.residual_ratio) + ")");
     const int centre = section.tread_centre_node;
     const double r0 = section.nodes[centre][0];
     results["axisym_radial_growth_m"] = axi.nodes[centre][0] - r0;
@@ -141,8 +141,8 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
     if (scene.time().fixed_dt_s() > 0) {
       if (scene.time().fixed_dt_s() > model.stable_dt_s)
         throw cosim::Error(loaded.locator().child("time").where("fixed_dt_s") + ": fixed time step " +
-                           std::to_string(scene.time().fixed_dt_s()) + " s is above the stable limit " +
-                           std::to_string(model.stable_dt_s) + " s");
+                           cosim::number_text(scene.time().fixed_dt_s()) + " s is above the stable limit " +
+                           cosim::number_text(model.stable_dt_s) + " s");
       dt = scene.time().fixed_dt_s();
     }
     std::uint64_t coupled_from_step = 0;
@@ -181,7 +181,7 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
           throw cosim::Error("interrupted by a signal at step " + std::to_string(s.step));
         if (max_steps > 0 && s.step >= max_steps) return;
         if (!step3d(model, s, drive_at(s.time_s - t0)))
-          throw cosim::Error("non-finite state at t = " + std::to_string(s.time_s) + " s (step " +
+          throw cosim::Error("non-finite state at t = " + cosim::number_text(s.time_s) + " s (step " +
                              std::to_string(s.step) + ")");
         steps = s.step, sim_time = s.time_s;
         const bool done = each_step && each_step();

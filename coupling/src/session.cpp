@@ -1,6 +1,6 @@
-#include "coupler/session.hpp"
+#include "cosim_coupling/session.hpp"
 
-namespace coupler {
+namespace cosim::coupling {
 
 namespace {
 std::chrono::milliseconds ms(double s) { return std::chrono::milliseconds(static_cast<long long>(1000.0 * s)); }
@@ -67,7 +67,7 @@ double Session::wait_for_start(const tp::HandshakeResult& joined) {
     }
     pending_.clear();
     if (Clock::now() > deadline)
-      throw cosim::Error("no START from the coupler within " + std::to_string(options_.start_timeout_s) + " s");
+      throw cosim::Error("no START from the coupler within " + cosim::number_text(options_.start_timeout_s) + " s");
     tp::RunControl m;
     if (tp::wait_for_accepted(*control_in_, control_filter_, m, std::chrono::microseconds(100000)) &&
         m.sender != options_.self && (m.addressee == tp::Role::any || m.addressee == options_.self))
@@ -104,7 +104,7 @@ void Session::check_alive(tp::Role from, std::uint64_t step, const char* what) {
   const double silent = std::chrono::duration<double>(std::chrono::steady_clock::now() - it->second).count();
   if (silent > options_.heartbeat_timeout_s)
     throw cosim::Error(std::string("the ") + tp::role_name(from) + " process has sent nothing for " +
-                       std::to_string(silent).substr(0, 4) + " s (no heartbeat) while we waited for its " + what +
+                       cosim::number_text(silent) + " s (no heartbeat) while we waited for its " + what +
                        " of step " + std::to_string(step) + ": it died or hangs");
 }
 
@@ -140,4 +140,4 @@ void Session::count_rejections(const tp::SampleFilter& filter) {
   rejected_step_ += filter.rejected_step();
 }
 
-}  // namespace coupler
+}  // namespace cosim::coupling

@@ -12,10 +12,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "coupler/session.hpp"
+#include "cosim_coupling/session.hpp"
 #include "cosim/scene_io.hpp"
 
-namespace coupler {
+namespace cosim::coupling {
 
 // The end of a coupled process that failed: everything is on disk (the run
 // flushed its outputs and told its peers), so the DDS teardown, which waits for
@@ -72,4 +72,4 @@ struct CouplingCli {
   }
 };
 
-}  // namespace coupler
+}  // namespace cosim::coupling

@@ -25,7 +25,7 @@
 #include "cosim_transport/sample_filter.hpp"
 #include "cosim_transport/transport.hpp"
 
-namespace coupler {
+namespace cosim::coupling {
 
 namespace tp = cosim::transport;
 
@@ -131,9 +131,9 @@ bool Session::wait_step(tp::Reader<T>& reader, tp::SampleFilter& filter, std::ui
     check_alive(from, step, what);
     if (Clock::now() > deadline)
       throw cosim::Error(std::string("no ") + what + " from the " + tp::role_name(from) + " for step " +
-                         std::to_string(step) + " within " + std::to_string(limit) +
+                         std::to_string(step) + " within " + cosim::number_text(limit) +
                          " s: the " + tp::role_name(from) + " process died or stopped answering");
   }
 }
 
-}  // namespace coupler
+}  // namespace cosim::coupling
