@@ -126,6 +126,19 @@ TEST(CoupledRun, CrossVendorTorqueSceneWritesTheDecompositionOfEveryStep) {
   const auto rows2 = lines_of(same + "/forces.csv");
   ASSERT_GT(rows2.size(), 300u);
   for (std::size_t r = 0; r < rows2.size() && r < rows.size(); ++r) ASSERT_EQ(rows2[r], rows[r]) << "row " << r;
+
+  // An active terrain domain that covers the whole block (every particle
+  // active) must leave the run as it was, bit for bit: its lists, the resting
+  // boundary's work and the wake-up bookkeeping must not touch the dynamics.
+  const auto whole = test_support::scratch("coupled_whole_domain");
+  auto [code3, out3] = shell(bin() + "/cosim run " + kScene + " --out " + whole +
+                             " --dds cyclone --domain 6 --no-vtk --quiet --set coupling.active_domain_margin_m=10"
+                             " --set time.max_steps=" + std::to_string(substeps * compare_windows + 200));
+  ASSERT_EQ(code3, 0) << out3;
+  EXPECT_EQ(read_json(whole + "/summary.json")["performance"]["active_particle_share"].get<double>(), 1.0);
+  const auto rows3 = lines_of(whole + "/forces.csv");
+  ASSERT_GT(rows3.size(), 300u);
+  for (std::size_t r = 0; r < rows3.size() && r < rows.size(); ++r) ASSERT_EQ(rows3[r], rows[r]) << "row " << r;
 }
 
 // The pid of the running `program` whose command line names `marker`.
@@ -245,7 +258,11 @@ double relative_difference(double a, double reference) { return std::fabs(a - re
 //    the terrain booked the contact work with the kick's mean velocity), so
 //    3.5 % bounds both; measured now: common step 2.9 % and 0.02 %, multi-rate
 //    1.4 % and 1.0 %;
-//  - the active domain (margin 0.1 m) changes F4, sinkage and area by < 1 %.
+//  - the active domain (margin 0.1 m: 94 % of the particles active on this small
+//    block) keeps F4, sinkage and area within the noise floor of the scene
+//    measured in docs/coupling.md (the common-step runs spread by 3.4 %, 0.4 %
+//    and 5.3 %): 2 %, 0.5 % and 2 %. That the domain's bookkeeping itself does
+//    not change the run is checked bit for bit in the test above.
 TEST(CoupledRun, MultirateMatchesTheCommonStepAndBalancesMomentum) {
   ASSERT_EQ(cross_vendor_run().code, 0) << cross_vendor_run().out;
   const SceneRun multirate = read_run(cross_vendor_run().dir);
@@ -272,7 +289,7 @@ TEST(CoupledRun, MultirateMatchesTheCommonStepAndBalancesMomentum) {
         << key << ": multi-rate " << multirate.summary["results"][key] << ", common step " << reference[key];
     EXPECT_LT(relative_difference(active.summary["results"][key].get<double>(),
                                   multirate.summary["results"][key].get<double>()),
-              0.01)
+              std::string(key) == "sinkage_m" ? 0.005 : 0.02)
         << key << ": active domain " << active.summary["results"][key] << ", all active "
         << multirate.summary["results"][key];
   }
