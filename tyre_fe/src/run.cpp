@@ -366,6 +366,10 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
       summary["performance"]["coupled_wall_s"] = wall() - coupled_from_wall;
       summary["performance"]["exchange_wait_s"] = st.exchange_s;
       summary["performance"]["compute_s"] = compute;
+      // Where the tyre's time goes (stage wall times summed over the coupled steps).
+      summary["performance"]["stages_s"] = {{"element_forces_and_gather", st.internal_forces_s},
+                                            {"road_contact", st.contact_s},
+                                            {"pressure_damping_rim_update_energy", st.rest_s}};
       summary["performance"]["compute_s_per_step"] = coupled_steps > 0 ? compute / coupled_steps : 0.0;
     }
     csv.reset();
