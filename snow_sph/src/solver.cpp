@@ -747,7 +747,7 @@ StepStats Solver::step() {
   update_energy(dt);
   if (domain_) {
     for (std::uint32_t i : force_list_) interactions_ += p.neighbour_count[i];
-    update_activity(stats.stopped ? nullptr : last_surface_);
+    if (!stats.stopped) update_activity(last_surface_);  // no surface: the run has ended
   } else {
     for (std::size_t i = 0; i < p.n_real; ++i) interactions_ += p.neighbour_count[i];
   }
