@@ -2,8 +2,9 @@
 // tyre_fe: a 0.2 x 0.2 x 0.05 m block of one-point hexahedra, the tread's Yeoh rubber
 // (K0 = 20 mu0), bottom fixed, top pushed down at 0.5 m/s, stepped with the tyre's own
 // step3d (element kernel, material law, gather, central difference) at the model's
-// stable step. Prints us per element-step on 1 and 2 threads (median of the repeats
-// and the spread) and the share of the element kernels + gather in the step.
+// stable step. Prints us per element-step on 1 and 2 threads (wall time: median of the
+// repeats and the spread; CPU time of all threads: median), the share of the element
+// kernels + gather in the step and the peak memory.
 //   block_bench [--divisions NX NY NZ] [--steps N | --end-time S] [--repeats R]
 // bench/calculix_bench.sh runs it beside CalculiX's ccx on the same block.
 #include <algorithm>
@@ -64,8 +65,15 @@ TyreMaterials tread_materials() {
 }
 
 struct Run {
-  double wall_s = 0.0, internal_share = 0.0, top_force_N = 0.0;
+  double wall_s = 0.0, cpu_s = 0.0, internal_share = 0.0, top_force_N = 0.0;
 };
+
+// User + system CPU time of the process (all threads) [s].
+double cpu_time_s() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 // N steps from the reference state; after each step the top nodes are put back on
 // their prescribed path (x, y held, z = z0 - v t, velocity -v). The top reaction is
@@ -74,7 +82,7 @@ Run run(const Model3d& model, const State3d& start, const std::vector<int>& top,
   State3d s = start;
   RimDrive held;  // x, spin held (defaults) and z held: the bottom stays where it is
   held.hold_z = true;
-  const double t0 = omp_get_wtime();
+  const double t0 = omp_get_wtime(), c0 = cpu_time_s();
   for (int k = 0; k < steps; ++k) {
     if (!step3d(model, s, held)) throw cosim::Error("block_bench: non-finite state at step " + std::to_string(k));
     for (int i : top) {
@@ -85,6 +93,7 @@ Run run(const Model3d& model, const State3d& start, const std::vector<int>& top,
   }
   Run r;
   r.wall_s = omp_get_wtime() - t0;
+  r.cpu_s = cpu_time_s() - c0;
   const auto& st = s.stage_times;
   r.internal_share = st.internal_forces_s / (st.internal_forces_s + st.contact_s + st.rest_s);
   for (int i : top) r.top_force_N -= s.fz[i];  // reaction on the top (z), as ccx's RF
@@ -124,15 +133,18 @@ int main(int argc, char** argv) {
       omp_set_num_threads(threads);
       std::vector<Run> runs;
       for (int r = 0; r < repeats; ++r) runs.push_back(run(model, start, top, steps));
-      std::vector<double> us;
+      std::vector<double> us, cpu_us;
       for (const Run& r : runs) us.push_back(1e6 * r.wall_s / (double(steps) * ne));
+      for (const Run& r : runs) cpu_us.push_back(1e6 * r.cpu_s / (double(steps) * ne));
       std::sort(us.begin(), us.end());
+      std::sort(cpu_us.begin(), cpu_us.end());
       // RESULT lines are read by bench/calculix_bench.sh.
       std::printf("RESULT threads %d us_per_element_step %.4f min %.4f max %.4f dt_s %.6g internal_share %.3f"
-                  " top_force_N %.2f\n", threads, us[us.size() / 2], us.front(), us.back(), model.stable_dt_s,
-                  runs.back().internal_share, runs.back().top_force_N);
+                  " top_force_N %.2f cpu_us_per_element_step %.4f\n", threads, us[us.size() / 2], us.front(), us.back(), model.stable_dt_s,
+                  runs.back().internal_share, runs.back().top_force_N,
+                  cpu_us[cpu_us.size() / 2]);
     }
-    rusage usage{};
+    rusage usage{};  // peak memory
     getrusage(RUSAGE_SELF, &usage);
     std::printf("PEAK_RSS_MB %.1f\n", usage.ru_maxrss / 1024.0);
     return 0;

@@ -46,11 +46,12 @@ trap 'rm -rf "$WORK"' EXIT
 RESULTS=$WORK/results.tsv
 now() { date +%s.%N; }
 
-# ccx_run JOB THREADS: runs $WORK/JOB.inp, prints its wall time [s]; peak RSS [KB] to JOB.rss.
+# ccx_run JOB THREADS: runs $WORK/JOB.inp, prints its wall time [s]; writes peak RSS [KB],
+# user and system CPU time [s] to JOB.rss.
 ccx_run() {
   local t0 t1
   t0=$(now)
-  (cd "$WORK" && OMP_NUM_THREADS=$2 /usr/bin/time -f %M -o "$1.rss" ccx -i "$1" >"$1.log" 2>&1) ||
+  (cd "$WORK" && OMP_NUM_THREADS=$2 /usr/bin/time -f "%M %U %S" -o "$1.rss" ccx -i "$1" >"$1.log" 2>&1) ||
     { tail -5 "$WORK/$1.log" >&2; return 1; }
   t1=$(now)
   grep -q "Using up to $2 cpu(s) for the stress calculation" "$WORK/$1.log" || { echo "ccx did not use $2 threads" >&2; return 1; }
@@ -88,45 +89,54 @@ PY
       w1=$(ccx_run "run$n1" "$threads") || fail "ccx run failed ($mesh, $n1 increments)"
       w2=$(ccx_run "run$n2" "$threads") || fail "ccx run failed ($mesh, $n2 increments)"
       f=$(grep -A2 "total force" "$WORK/run$n2.dat" | tail -1 | awk '{print $3}')
-      echo -e "ccx\t$ne\t$threads\t$dt\t$(python3 -c "print(1e6 * ($w2 - $w1) / ($n2 - $n1) / $ne)")\t$f\t$(python3 -c "print(($n2 - 0.5) * $dt)")\t$w1\t$w2\t$(cat "$WORK/run$n2.rss")" >>"$RESULTS"
+      read -r _ u1 s1 <"$WORK/run$n1.rss"
+      read -r kb u2 s2 <"$WORK/run$n2.rss"
+      us=$(python3 -c "print(1e6 * ($w2 - $w1) / ($n2 - $n1) / $ne)")
+      cpu=$(python3 -c "print(1e6 * ($u2 + $s2 - $u1 - $s1) / ($n2 - $n1) / $ne)")
+      echo -e "ccx\t$ne\t$threads\t$dt\t$us\t$f\t$(python3 -c "print(($n2 - 0.5) * $dt)")\t$w1\t$w2\t$kb\t$cpu" >>"$RESULTS"
     done
   done
   "$BIN/block_bench" --divisions "$nx" "$ny" "$nz" --end-time "$(python3 -c "print(($n2 - 0.5) * $dt)")" \
     --repeats "$REPEATS" >"$WORK/block.log" || fail "block_bench failed ($mesh)"
   head -1 "$WORK/block.log"
   rss=$(awk '/^PEAK_RSS_MB/ {print $2 * 1024}' "$WORK/block.log")
-  awk -v ne="$ne" -v rss="$rss" '/^RESULT/ {print "tyre_fe\t" ne "\t" $3 "\t" $11 "\t" $5 "\t" $15 "\t" $7 "\t" $9 "\t" $13 "\t" rss}' \
+  awk -v ne="$ne" -v rss="$rss" '/^RESULT/ {print "tyre_fe\t" ne "\t" $3 "\t" $11 "\t" $5 "\t" $15 "\t" $7 "\t" $9 "\t" $13 "\t" rss "\t" $17}' \
     "$WORK/block.log" >>"$RESULTS"
   sed -n 's/.*end time \(\S*\) s.*/\1/p' "$WORK/block.log" >"$WORK/end_$ne"
 done
 echo "calculix_bench: load average at end: $(cut -d' ' -f1-3 /proc/loadavg)"
 
-python3 - "$RESULTS" "$WORK" "$JSON" "$CCX_VERSION" "$(lscpu | sed -n 's/^Model name: *//p')" "$LOAD0" <<'PY'
+python3 - "$RESULTS" "$WORK" "$JSON" "$CCX_VERSION" "$(lscpu | sed -n 's/^Model name: *//p')" "$LOAD0" \
+  "$(cut -d' ' -f1-3 /proc/loadavg)" <<'PY'
 import json, statistics, sys
-work, out, ccx_version, cpu, load = sys.argv[2:7]
+work, out, ccx_version, cpu, load0, load1 = sys.argv[2:8]
 res = {}
 for line in open(sys.argv[1]):
     code, ne, th, dt, us, force, *rest = line.rstrip("\n").split("\t")
     res.setdefault((int(ne), int(th)), {}).setdefault(code, []).append((float(dt), float(us), float(force), rest))
-print(f"{'elements':>9} {'thr':>3} | {'ccx dt s':>9} {'us/el-step':>10} {'MB':>5} | {'tyre_fe dt s':>12}"
-      f" {'us/el-step (min-max)':>24} {'MB':>4} | {'ccx/ours per el-step':>20} {'per sim. time':>13}")
+print(f"{'elements':>8} {'thr':>3} | {'ccx dt s':>9} {'us':>6} {'cpu us':>6} {'MB':>5} | {'ours dt s':>9}"
+      f" {'us (min-max)':>21} {'cpu us':>6} {'MB':>4} | {'ccx/ours':>8} {'per sim. s':>10}")
 table = []
 for (ne, th), v in sorted(res.items()):
     ccx, ours = v["ccx"], v["tyre_fe"][0]
     c_dt, c_us = ccx[0][0], statistics.median(x[1] for x in ccx)
+    c_cpu = statistics.median(float(x[3][4]) for x in ccx)
     c_t, c_mb = float(ccx[0][3][0]), float(ccx[0][3][3]) / 1024
-    t_dt, t_us, (t_min, t_max, share, t_kb) = ours[0], ours[1], ours[3]
+    t_dt, t_us, (t_min, t_max, share, t_kb, t_cpu) = ours[0], ours[1], ours[3]
     ratio, per_time = c_us / t_us, (c_us / c_dt) / (t_us / t_dt)
-    print(f"{ne:>9} {th:>3} | {c_dt:>9.4g} {c_us:>10.3f} {c_mb:>5.0f} | {t_dt:>12.4g} {t_us:>8.3f} ({t_min}-{t_max})"
-          f" {float(t_kb) / 1024:>4.0f} | {ratio:>19.1f}x {per_time:>12.1f}x")
+    print(f"{ne:>8} {th:>3} | {c_dt:>9.4g} {c_us:>6.3f} {c_cpu:>6.3f} {c_mb:>5.0f} | {t_dt:>9.4g} {t_us:>6.3f}"
+          f" ({t_min}-{t_max}) {float(t_cpu):>6.3f} {float(t_kb) / 1024:>4.0f} | {ratio:>7.1f}x {per_time:>9.1f}x")
     table.append(dict(elements=ne, threads=th, ratio_per_element_step=ratio, ratio_per_simulated_time=per_time,
-                      ccx=dict(dt_s=c_dt, us_per_element_step=c_us, runs=len(ccx),
+                      ccx=dict(dt_s=c_dt, us_per_element_step=c_us, cpu_us_per_element_step=c_cpu, runs=len(ccx),
                                min=min(x[1] for x in ccx), max=max(x[1] for x in ccx),
                                peak_rss_MB=c_mb, top_reaction_N=ccx[0][2], at_time_s=c_t),
                       tyre_fe=dict(dt_s=t_dt, us_per_element_step=t_us, min=float(t_min), max=float(t_max),
-                                   internal_forces_share=float(share), peak_rss_MB=float(t_kb) / 1024,
-                                   top_reaction_N=ours[2], at_time_s=float(open(f"{work}/end_{ne}").read()))))
-print("us/el-step: wall time per element per step (ccx: median over its run pairs; tyre_fe: median of its repeats)")
+                                   cpu_us_per_element_step=float(t_cpu), internal_forces_share=float(share),
+                                   peak_rss_MB=float(t_kb) / 1024, top_reaction_N=ours[2],
+                                   at_time_s=float(open(f"{work}/end_{ne}").read()))))
+print("us: wall time per element-step (ccx: median over its run pairs; ours: tyre_fe, median of its repeats);"
+      " cpu us: the same in CPU time of all threads; ccx/ours: ratio of the wall figures, per element-step and per"
+      " simulated second (each at its own step)")
 print("tyre_fe's element kernels + gather take "
       + ", ".join(f"{100 * r['tyre_fe']['internal_forces_share']:.0f} %" for r in table) + " of its step")
 print("top reaction z (both solve the same problem):")
@@ -135,7 +145,7 @@ for r in table:
         print(f"  {r['elements']} elements: ccx {r['ccx']['top_reaction_N']:.1f} N at {r['ccx']['at_time_s']:.4g} s,"
               f" tyre_fe {r['tyre_fe']['top_reaction_N']:.1f} N at {r['tyre_fe']['at_time_s']:.4g} s")
 if out:
-    json.dump(dict(benchmark="bench/calculix_bench.sh", calculix_ccx=ccx_version, cpu=cpu,
-                   load_average_at_start=load, results=table), open(out, "w"), indent=1)
+    json.dump(dict(benchmark="bench/calculix_bench.sh", calculix_ccx=ccx_version, cpu=cpu, load_average_at_start=load0,
+                   load_average_at_end=load1, results=table), open(out, "w"), indent=1)
     print(f"calculix_bench: wrote {out}")
 PY
