@@ -1,0 +1,151 @@
+#!/bin/bash
+# tyre_fe's explicit step against CalculiX 2.20 (ccx, *DYNAMIC, EXPLICIT) on the peer
+# block of ../shared/notes/peers.md: 0.2 x 0.2 x 0.05 m, one-point hexahedra (C3D8R),
+# the tread's Yeoh rubber, bottom fixed, top pushed down at 0.5 m/s; each code at its
+# own stable step. Prints us per element-step on 1 and 2 threads and the ratio.
+#   bench/calculix_bench.sh [--json FILE] [--meshes "44x44x11:100:400 68x68x17:50:200"]
+#                           [--repeats R] [--ccx-repeats R]
+# A mesh is NXxNYxNZ:N1:N2. ccx runs N1 and N2 increments; its set-up (reading, mass
+# matrix, structure) is removed by differencing: (t2 - t1) / (N2 - N1) / elements
+# (wall time of the process). tyre_fe (build/bin/block_bench) times its stepping only,
+# median of R runs (default 3), over the same simulated time as ccx's N2 run; the top
+# reaction at that time is printed for both as a check that they solve the same problem.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BIN=${COSIM_BIN_DIR:-build/bin}
+MESHES="44x44x11:100:400 68x68x17:50:200"
+REPEATS=3 CCX_REPEATS=1 JSON=""
+while [ $# -gt 0 ]; do
+  case $1 in
+    --json) JSON=$2; shift 2 ;;
+    --meshes) MESHES=$2; shift 2 ;;
+    --repeats) REPEATS=$2; shift 2 ;;
+    --ccx-repeats) CCX_REPEATS=$2; shift 2 ;;
+    *) echo "calculix_bench: unknown option $1 (--json FILE, --meshes, --repeats, --ccx-repeats)" >&2; exit 2 ;;
+  esac
+done
+fail() { echo "calculix_bench: error: $*" >&2; exit 1; }
+
+if ! command -v ccx >/dev/null; then
+  [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null ||
+    fail "ccx not found and cannot be installed here (needs root and apt-get): install Debian's calculix-ccx (apt-get install calculix-ccx)"
+  echo "calculix_bench: installing calculix-ccx with apt-get"
+  DEBIAN_FRONTEND=noninteractive apt-get install -y calculix-ccx >/tmp/calculix_bench_apt.log 2>&1 ||
+    fail "apt-get install calculix-ccx failed (log: /tmp/calculix_bench_apt.log)"
+fi
+CCX_VERSION=$(dpkg-query -W -f='${Version}' calculix-ccx 2>/dev/null || echo unknown)
+if [ -z "${COSIM_BIN_DIR:-}" ]; then
+  [ -f build/CMakeCache.txt ] || fail "no build/: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release, then rerun"
+  cmake --build build -j1 --target block_bench >/dev/null || fail "building block_bench failed (cmake --build build -j1 --target block_bench)"
+fi
+[ -x "$BIN/block_bench" ] || fail "$BIN/block_bench not found"
+[ -x /usr/bin/time ] || fail "/usr/bin/time not found (apt-get install time): it gives ccx's peak memory"
+
+WORK=$(mktemp -d /tmp/calculix_bench.XXXXXX)
+trap 'rm -rf "$WORK"' EXIT
+RESULTS=$WORK/results.tsv
+now() { date +%s.%N; }
+
+# ccx_run JOB THREADS: runs $WORK/JOB.inp, prints its wall time [s]; writes peak RSS [KB],
+# user and system CPU time [s] to JOB.rss.
+ccx_run() {
+  local t0 t1
+  t0=$(now)
+  (cd "$WORK" && OMP_NUM_THREADS=$2 /usr/bin/time -f "%M %U %S" -o "$1.rss" ccx -i "$1" >"$1.log" 2>&1) ||
+    { tail -5 "$WORK/$1.log" >&2; return 1; }
+  t1=$(now)
+  grep -q "Using up to $2 cpu(s) for the stress calculation" "$WORK/$1.log" || { echo "ccx did not use $2 threads" >&2; return 1; }
+  ! grep -qi nan "$WORK/$1.dat" || { echo "ccx result is NaN ($1.dat)" >&2; return 1; }
+  python3 -c "print($t1 - $t0)"
+}
+deck() { python3 bench/calculix_block_deck.py "$@"; }
+
+LOAD0=$(cut -d' ' -f1-3 /proc/loadavg)
+echo "calculix_bench: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores; load average at start: $LOAD0"
+awk '{exit !($1 > 0.5)}' /proc/loadavg && echo "calculix_bench: warning: the machine is busy; 2-thread figures will suffer"
+for mesh in $MESHES; do
+  IFS=':x' read -r nx ny nz n1 n2 <<<"$mesh"
+  [ -n "$n2" ] && [ "$n2" -gt "$n1" ] || fail "mesh '$mesh': give NXxNYxNZ:N1:N2 with N2 > N1"
+  ne=$((nx * ny * nz))
+  # Probe: ccx's stable increment (its COURANT estimate), checked constant over 3 increments.
+  probe_s=$(python3 -c "print(1.5 * 0.05 / $nz / 167.8)")  # about 4 increments
+  deck "$nx" "$ny" "$nz" "$probe_s" --trace >"$WORK/probe.inp"
+  ccx_run probe 1 >/dev/null || fail "ccx probe run failed ($mesh)"
+  dt=$(python3 - "$WORK" <<'PY'
+import re, sys
+d = sys.argv[1]
+dt = float(re.search(r"COURANT initial stable time increment:\s*(\S+)", open(d + "/probe.log").read()).group(1))
+t = [float(x) for x in re.findall(r"for set PROBE and time\s+(\S+)", open(d + "/probe.dat").read())]
+if len(t) < 3 or any(abs((b - a) - dt) > 1e-5 * dt for a, b in zip([0.0] + t[:-2], t[:-1])):
+    sys.exit(f"ccx increments not at its stable step {dt}: {t}")
+print(dt)
+PY
+) || fail "ccx probe ($mesh)"
+  for threads in 1 2; do
+    for r in $(seq "$CCX_REPEATS"); do
+      for n in "$n1" "$n2"; do
+        deck "$nx" "$ny" "$nz" "$(python3 -c "print(($n - 0.5) * $dt)")" >"$WORK/run$n.inp"  # N increments, the last half
+      done
+      w1=$(ccx_run "run$n1" "$threads") || fail "ccx run failed ($mesh, $n1 increments)"
+      w2=$(ccx_run "run$n2" "$threads") || fail "ccx run failed ($mesh, $n2 increments)"
+      f=$(grep -A2 "total force" "$WORK/run$n2.dat" | tail -1 | awk '{print $3}')
+      read -r _ u1 s1 <"$WORK/run$n1.rss"
+      read -r kb u2 s2 <"$WORK/run$n2.rss"
+      us=$(python3 -c "print(1e6 * ($w2 - $w1) / ($n2 - $n1) / $ne)")
+      cpu=$(python3 -c "print(1e6 * ($u2 + $s2 - $u1 - $s1) / ($n2 - $n1) / $ne)")
+      echo -e "ccx\t$ne\t$threads\t$dt\t$us\t$f\t$(python3 -c "print(($n2 - 0.5) * $dt)")\t$w1\t$w2\t$kb\t$cpu" >>"$RESULTS"
+    done
+  done
+  "$BIN/block_bench" --divisions "$nx" "$ny" "$nz" --end-time "$(python3 -c "print(($n2 - 0.5) * $dt)")" \
+    --repeats "$REPEATS" >"$WORK/block.log" || fail "block_bench failed ($mesh)"
+  head -1 "$WORK/block.log"
+  rss=$(awk '/^PEAK_RSS_MB/ {print $2 * 1024}' "$WORK/block.log")
+  awk -v ne="$ne" -v rss="$rss" '/^RESULT/ {print "tyre_fe\t" ne "\t" $3 "\t" $11 "\t" $5 "\t" $15 "\t" $7 "\t" $9 "\t" $13 "\t" rss "\t" $17}' \
+    "$WORK/block.log" >>"$RESULTS"
+  sed -n 's/.*end time \(\S*\) s.*/\1/p' "$WORK/block.log" >"$WORK/end_$ne"
+done
+echo "calculix_bench: load average at end: $(cut -d' ' -f1-3 /proc/loadavg)"
+
+python3 - "$RESULTS" "$WORK" "$JSON" "$CCX_VERSION" "$(lscpu | sed -n 's/^Model name: *//p')" "$LOAD0" \
+  "$(cut -d' ' -f1-3 /proc/loadavg)" <<'PY'
+import json, statistics, sys
+work, out, ccx_version, cpu, load0, load1 = sys.argv[2:8]
+res = {}
+for line in open(sys.argv[1]):
+    code, ne, th, dt, us, force, *rest = line.rstrip("\n").split("\t")
+    res.setdefault((int(ne), int(th)), {}).setdefault(code, []).append((float(dt), float(us), float(force), rest))
+print(f"{'elements':>8} {'thr':>3} | {'ccx dt s':>9} {'us':>6} {'cpu us':>6} {'MB':>5} | {'ours dt s':>9}"
+      f" {'us (min-max)':>21} {'cpu us':>6} {'MB':>4} | {'ccx/ours':>8} {'per sim. s':>10}")
+table = []
+for (ne, th), v in sorted(res.items()):
+    ccx, ours = v["ccx"], v["tyre_fe"][0]
+    c_dt, c_us = ccx[0][0], statistics.median(x[1] for x in ccx)
+    c_cpu = statistics.median(float(x[3][4]) for x in ccx)
+    c_t, c_mb = float(ccx[0][3][0]), float(ccx[0][3][3]) / 1024
+    t_dt, t_us, (t_min, t_max, share, t_kb, t_cpu) = ours[0], ours[1], ours[3]
+    ratio, per_time = c_us / t_us, (c_us / c_dt) / (t_us / t_dt)
+    print(f"{ne:>8} {th:>3} | {c_dt:>9.4g} {c_us:>6.3f} {c_cpu:>6.3f} {c_mb:>5.0f} | {t_dt:>9.4g} {t_us:>6.3f}"
+          f" ({t_min}-{t_max}) {float(t_cpu):>6.3f} {float(t_kb) / 1024:>4.0f} | {ratio:>7.1f}x {per_time:>9.1f}x")
+    table.append(dict(elements=ne, threads=th, ratio_per_element_step=ratio, ratio_per_simulated_time=per_time,
+                      ccx=dict(dt_s=c_dt, us_per_element_step=c_us, cpu_us_per_element_step=c_cpu, runs=len(ccx),
+                               min=min(x[1] for x in ccx), max=max(x[1] for x in ccx),
+                               peak_rss_MB=c_mb, top_reaction_N=ccx[0][2], at_time_s=c_t),
+                      tyre_fe=dict(dt_s=t_dt, us_per_element_step=t_us, min=float(t_min), max=float(t_max),
+                                   cpu_us_per_element_step=float(t_cpu), internal_forces_share=float(share),
+                                   peak_rss_MB=float(t_kb) / 1024, top_reaction_N=ours[2],
+                                   at_time_s=float(open(f"{work}/end_{ne}").read()))))
+print("us: wall time per element-step (ccx: median over its run pairs; ours: tyre_fe, median of its repeats);"
+      " cpu us: the same in CPU time of all threads; ccx/ours: ratio of the wall figures, per element-step and per"
+      " simulated second (each at its own step)")
+print("tyre_fe's element kernels + gather take "
+      + ", ".join(f"{100 * r['tyre_fe']['internal_forces_share']:.0f} %" for r in table) + " of its step")
+print("top reaction z (both solve the same problem):")
+for r in table:
+    if r["threads"] == 1:
+        print(f"  {r['elements']} elements: ccx {r['ccx']['top_reaction_N']:.1f} N at {r['ccx']['at_time_s']:.4g} s,"
+              f" tyre_fe {r['tyre_fe']['top_reaction_N']:.1f} N at {r['tyre_fe']['at_time_s']:.4g} s")
+if out:
+    json.dump(dict(benchmark="bench/calculix_bench.sh", calculix_ccx=ccx_version, cpu=cpu, load_average_at_start=load0,
+                   load_average_at_end=load1, results=table), open(out, "w"), indent=1)
+    print(f"calculix_bench: wrote {out}")
+PY
