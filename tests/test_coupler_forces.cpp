@@ -133,7 +133,10 @@ TEST(CouplerForces, MeasuredRm2GivesRollingResistanceForce) {
   EXPECT_EQ(d.pressure_centre_offset_m, 0.0);
 }
 
-TEST(CouplerForces, DrawbarPullIdentityOnAMixedPatch) {
+TEST(CouplerForces, DrawbarPullOnAMixedPatchWorkedByHand) {
+  // Five facets; every expected value below is a number worked out by hand from
+  // the definitions of docs/force_decomposition.md (thesis 2.1.1-2.1.4, eq. 2.1),
+  // not an expression of the code's formulas.
   const double r = 0.4;
   coupler::FacetLoads l;
   add(l, FacetTag::tread_top, {0, 0, 1500}, {300, 10, 0}, {0.02, 0, -0.38}, 4e-3);  // friction 300 forward
@@ -142,17 +145,60 @@ TEST(CouplerForces, DrawbarPullIdentityOnAMixedPatch) {
   add(l, FacetTag::groove_wall, {-30, 0, 0}, {0, 0, 2}, {0.05, 0, -0.37}, 5e-4);    // faces forward: -30
   add(l, FacetTag::sipe_wall, {15, 0, 0}, {0, 0, 0}, {0.0, 0, -0.37}, 1e-4);
   const auto d = coupler::decompose_forces(l, wheel(0.0, r));
-  const double f1 = 80, f2 = 120 - 30 + 15, f3 = 300 + 50;  // by hand from the facets above
-  const double rrm = 1500 * 0.02 + 600 * 0.12, f5 = rrm / r;
-  EXPECT_NEAR(d.motion_resistance_N, f1, 1e-9);
-  EXPECT_NEAR(d.groove_force_N, f2, 1e-9);
-  EXPECT_NEAR(d.traction_force_N, f3, 1e-9);
+  // By hand:
+  //   F1  = -(P_x of the non-groove facets) = -(0 - 80)         =  80 N
+  //   F2  =   P_x of the groove facets      = 120 - 30 + 15      = 105 N
+  //   F3  =   sum T_x                       = 300 + 50           = 350 N
+  //   RRM =   sum P_z (x - x_rim)           = 1500 (0.02) + 600 (0.12) = 30 + 72 = 102 N m
+  //   F5  =   RRM / r                       = 102 / 0.4          = 255 N
+  //   DP  =   F2 + F3 - F1 - F5             = 105 + 350 - 80 - 255 = 120 N   (eq. 2.1)
+  //   -F1 + F2                              = 25 N                          (eq. 2.2)
+  // Tolerance 1e-9 N: each value is a sum of at most five terms of order 1e3 N in
+  // double precision (rounding ~1e-13 N); a wrong sign or a facet in the wrong
+  // class changes a value by 10 N or more.
+  EXPECT_NEAR(d.motion_resistance_N, 80.0, 1e-9);
+  EXPECT_NEAR(d.groove_force_N, 105.0, 1e-9);
+  EXPECT_NEAR(d.traction_force_N, 350.0, 1e-9);
+  EXPECT_NEAR(d.rolling_resistance_moment_Nm, 102.0, 1e-9);
+  EXPECT_NEAR(d.rolling_resistance_force_N, 255.0, 1e-9);
+  EXPECT_NEAR(d.drawbar_pull_N, 120.0, 1e-9);
+  EXPECT_NEAR(d.net_longitudinal_pressure_force_N, 25.0, 1e-9);
+  EXPECT_NEAR(d.traction_minus_rrf_N, 350.0 - 255.0, 1e-9);
+  // The inline eq. 2.1 on its own, with the hand values: 120 N. The four inputs are
+  // distinct, so a swapped argument or a flipped sign gives another number
+  // (e.g. +F1: 280, +F5: 630, F1 and F2 swapped: 70). The inputs and all partial
+  // sums are integers, exact in double precision, hence the tolerance 0.
+  EXPECT_EQ(coupler::drawbar_pull(80.0, 105.0, 350.0, 255.0), 120.0);
+  EXPECT_EQ(coupler::net_longitudinal_pressure_force(80.0, 105.0), 25.0);
+}
+
+TEST(CouplerForces, DrawbarPullIsNetLongitudinalForceMinusMomentRrf) {
+  // A physical identity the code does not use to compute DP: F1, F2 and F3 split the
+  // whole longitudinal contact force on the tyre, so DP = sum_i (P_x,i + T_x,i) - F5,
+  // here with F5 from the measured rim moment (towed tyre, thesis 5.2.3: RRM = RM2).
+  // The net force is summed facet by facet below, without the tag split; the code sums
+  // F1, F2, F3 separately by tag. Loads on a tread-patterned patch, three groove tags.
+  const double r = 0.42, rm2 = 45.0;  // thesis 5.2.3: 45 N m, zero-slip radius 0.42 m
+  coupler::FacetLoads l;
+  add(l, FacetTag::tread_top, {-35, 3, 900}, {120, -6, 1}, {0.03, 0.01, -0.38}, 3e-3);
+  add(l, FacetTag::groove_bottom, {-12, 0, 300}, {20, 0, 0}, {0.08, -0.02, -0.37}, 1e-3);
+  add(l, FacetTag::groove_wall, {60, 0, 4}, {-5, 0, 0}, {-0.02, 0.03, -0.37}, 4e-4);
+  add(l, FacetTag::groove_wall, {-18, 1, 2}, {3, 0, 0}, {0.06, 0.03, -0.37}, 4e-4);
+  add(l, FacetTag::sipe_wall, {9, 0, 0}, {1, 0, 0}, {0.01, 0.0, -0.38}, 1e-4);
+  add(l, FacetTag::shoulder, {-7, 2, 150}, {-4, 0, 0}, {0.1, 0.1, -0.33}, 5e-4);
+  coupler::WheelInput w = wheel(0.0, r);
+  w.reaction_moment_y_Nm = rm2;
+  coupler::DecompositionOptions o;
+  o.rrm_source = coupler::RrmSource::reaction_moment;
+  const auto d = coupler::decompose_forces(l, w, o);
+  // Net longitudinal contact force, by hand: pressure -35 - 12 + 60 - 18 + 9 - 7 = -3 N,
+  // friction 120 + 20 - 5 + 3 + 1 - 4 = 135 N, total 132 N; F5 = 45 / 0.42 = 107.142857... N.
+  const double net_x = 132.0, f5 = 45.0 / 0.42;
+  // Tolerance: 1e-9 N against forces of order 1e2 N (double-precision rounding
+  // ~1e-13 N); a facet dropped or counted twice changes DP by at least 1 N.
   EXPECT_NEAR(d.rolling_resistance_force_N, f5, 1e-9);
-  EXPECT_NEAR(d.drawbar_pull_N, f2 + f3 - f1 - f5, 1e-9);                 // eq. 2.1
-  EXPECT_NEAR(d.net_longitudinal_pressure_force_N, -f1 + f2, 1e-9);      // eq. 2.2
-  const double all_x = -80 + 120 - 30 + 15 + 300 + 50;                    // every longitudinal contact force
-  EXPECT_NEAR(d.drawbar_pull_N, all_x - f5, 1e-9);                        // F1, F2, F3 split it, nothing lost
-  EXPECT_NEAR(coupler::drawbar_pull(f1, f2, f3, f5), f2 + f3 - f1 - f5, 0.0);
+  EXPECT_NEAR(d.drawbar_pull_N, net_x - f5, 1e-9);
+  EXPECT_NEAR(d.net_longitudinal_pressure_force_N, -3.0, 1e-9);  // eq. 2.2: the pressure part alone
 }
 
 TEST(CouplerForces, SinkageAndContactArea) {

@@ -17,16 +17,24 @@ namespace {
 
 constexpr double kDriveTorque_Nm = 400.0;
 constexpr double kMomentTolerance = 0.05;  // issue: within 5 %
-// Energy balance after rolling: no spurious growth (the surplus KE + IE - E0 - W stays
-// below 0.1 % of the largest energy); what the integration loses without booking it
-// (measured 1.1 % after 1.35 revolutions on the scene's mesh) stays below 1 %.
-constexpr double kEnergyGrowthTolerance = 1e-3;
-constexpr double kEnergyLossTolerance = 1e-2;
 
-void expect_no_energy_growth(const nlohmann::json& results) {
-  const double error = results["energy_balance_error"], balance = results["energy_balance_J"];
-  if (balance > 0.0) EXPECT_LT(error, kEnergyGrowthTolerance) << "energy created: " << balance << " J";
-  EXPECT_LT(error, kEnergyLossTolerance);
+// Energy balance. Energy the integration loses (or creates) without booking it acts on
+// the rolling tyre like a rolling-resistance moment of its own: E over the angle rolled
+// theta is a moment E / theta, and it shows in the road force Fx. So that it is at most
+// kMomentTolerance of the moment the test measures, |Fx| h, the balance
+// KE + IE - E0 - W (booked work of every load, damping and contact) must stay within
+//   |balance| <= kMomentTolerance |Fx| h theta.
+// Free rolling: about 0.05 x 2.2 N m x 3 rad = 0.33 J; today -0.03 J, almost all of it
+// from the loading stage (dynamic relaxation); it does not grow while rolling.
+// Booking the pressure and contact work with the velocity at t - dt/2 instead of t lost
+// 0.5 J here, growing with the distance rolled, and failed this bound.
+void expect_energy_balance_closed(const nlohmann::json& results) {
+  const double balance = results["energy_balance_J"];
+  const double theta = 2.0 * M_PI * results["rolling_revolutions"].get<double>();
+  const double moment = std::fabs(results["road_longitudinal_force_moment_Nm"].get<double>());
+  const double bound = kMomentTolerance * moment * theta;
+  std::printf("energy balance %.4f J, bound %.4f J (5 %% of %.2f N m over %.2f rad)\n", balance, bound, moment, theta);
+  EXPECT_LT(std::fabs(balance), bound) << (balance > 0 ? "energy created" : "energy lost");
 }
 
 // 30 mm elements, 36 divisions (4,968 hexahedra); 0.45 s of rolling averaged over
@@ -53,7 +61,7 @@ TEST(TyreRolling, FreeRollingRadiusAndDrivingTorqueBalance) {
               f["energy_balance_error"].get<double>());
   EXPECT_GT(rolling_radius, loaded);
   EXPECT_LT(rolling_radius, unloaded);
-  expect_no_energy_growth(f);
+  expect_energy_balance_closed(f);
   EXPECT_GT(f["rolling_revolutions"].get<double>(), 0.15);
 
   const auto driven = roll(kDriveTorque_Nm, "tyre_rolling_torque");
@@ -74,7 +82,7 @@ TEST(TyreRolling, FreeRollingRadiusAndDrivingTorqueBalance) {
               kMomentTolerance * net_torque);
   EXPECT_NEAR(road_moment, net_torque, kMomentTolerance * net_torque);
   EXPECT_NEAR(d["rm2_Nm"].get<double>(), kDriveTorque_Nm, 0.01 * kDriveTorque_Nm);  // spin at steady state
-  expect_no_energy_growth(d);
+  expect_energy_balance_closed(d);
 }
 
 }  // namespace

@@ -28,11 +28,14 @@ State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& c
   for (std::size_t i = 0; i < nn; ++i) s.x[i] = current[i].x(), s.y[i] = current[i].y(), s.z[i] = current[i].z();
   s.vx.assign(nn, 0.0), s.vy.assign(nn, 0.0), s.vz.assign(nn, 0.0);
   s.fx.assign(nn, 0.0), s.fy.assign(nn, 0.0), s.fz.assign(nn, 0.0);
+  s.pressure_fx.assign(nn, 0.0), s.pressure_fy.assign(nn, 0.0), s.pressure_fz.assign(nn, 0.0);
+  s.contact_fx.assign(nn, 0.0), s.contact_fy.assign(nn, 0.0), s.contact_fz.assign(nn, 0.0);
   s.element_force.assign(model.mesh.hexes.size() * 24, 0.0);
   s.element_energy.assign(model.mesh.hexes.size(), 0.0);
   s.element_viscous_power.assign(model.mesh.hexes.size(), 0.0);
   s.element_hourglass.assign(model.mesh.hexes.size(), 0.0);
   s.rim_nodes = model.mesh.rim_nodes;
+  s.rim_node_v_old.assign(3 * s.rim_nodes.size(), 0.0);
   s.rim.mass_kg = rim_mass_kg;
   s.rim.inertia_kg_m2 = rim_inertia_kg_m2;
   for (int n : s.rim_nodes) {
@@ -131,9 +134,11 @@ void gather_forces(const Model3d& m, State3d& s) {
 
 // Stage 3: inflation pressure, a follower load on the current inner-liner facets,
 // pushing the liner away from the cavity (the facet normal points into the cavity).
-double pressure_forces(const Model3d& m, State3d& s) {
-  if (s.pressure_Pa == 0.0) return 0.0;
-  double power = 0.0;
+void pressure_forces(const Model3d& m, State3d& s) {
+  std::fill(s.pressure_fx.begin(), s.pressure_fx.end(), 0.0);
+  std::fill(s.pressure_fy.begin(), s.pressure_fy.end(), 0.0);
+  std::fill(s.pressure_fz.begin(), s.pressure_fz.end(), 0.0);
+  if (s.pressure_Pa == 0.0) return;
   for (int fi : m.pressure_facets) {
     const auto& n = m.mesh.facets[fi].nodes;
     const Eigen::Vector3d d1(s.x[n[2]] - s.x[n[0]], s.y[n[2]] - s.y[n[0]], s.z[n[2]] - s.z[n[0]]);
@@ -141,21 +146,19 @@ double pressure_forces(const Model3d& m, State3d& s) {
     const Eigen::Vector3d f = -0.125 * s.pressure_Pa * d1.cross(d2);  // -p A / 4 per node
     for (int a : n) {
       s.fx[a] += f.x(), s.fy[a] += f.y(), s.fz[a] += f.z();
-      power += f.x() * s.vx[a] + f.y() * s.vy[a] + f.z() * s.vz[a];
+      s.pressure_fx[a] += f.x(), s.pressure_fy[a] += f.y(), s.pressure_fz[a] += f.z();
     }
   }
-  return power;
 }
 
 // Stage 4: road contact, node to plane. Normal: penalty k = scale m / dt^2 with 10 %
 // of critical damping while approaching. Friction: an elastic stick spring of the
 // same stiffness anchored where the node stuck, capped at mu f_n (Coulomb slip moves
 // the anchor): sticking nodes do not creep, which the rolling radius needs.
-double road_contact(const Model3d& m, State3d& s) {
+void road_contact(const Model3d& m, State3d& s) {
   RoadState& r = s.road;
   r.force_x_N = r.force_y_N = r.force_z_N = r.contact_area_m2 = 0.0;
-  if (!r.present) return 0.0;
-  double power = 0.0;
+  if (!r.present) return;
   const double dt2 = s.dt_s * s.dt_s;
   for (std::size_t c = 0; c < m.contact_nodes.size(); ++c) {
     const int i = m.contact_nodes[c];
@@ -178,12 +181,11 @@ double road_contact(const Model3d& m, State3d& s) {
       r.anchor_x[c] = s.x[i] + ftx / k, r.anchor_y[c] = s.y[i] + fty / k;
     }
     s.fx[i] += ftx, s.fy[i] += fty, s.fz[i] += fn;
+    s.contact_fx[i] += ftx, s.contact_fy[i] += fty, s.contact_fz[i] += fn;
     r.force_x_N += ftx, r.force_y_N += fty, r.force_z_N += fn;
     r.normal_force_N[c] = fn;
     r.contact_area_m2 += m.contact_node_area_m2[c];
-    power += ftx * s.vx[i] + fty * s.vy[i] + fn * s.vz[i];
   }
-  return power;
 }
 
 // Stage 5: rim rigid body (free nodes are updated in stage 6).
@@ -254,20 +256,19 @@ void receive_loads(State3d& s) {
   if (t.substep == 0) t.port->receive(t.exchange, t.loads);
 }
 
-// Stage 4b: the held loads of the terrain on the surface nodes.
-double terrain_loads(State3d& s) {
+// Stage 4b: the held loads of the terrain on the surface nodes (their work is
+// booked with the contact forces, per node, in step3d).
+void terrain_loads(State3d& s) {
   TerrainCoupling& t = s.terrain;
-  double power = 0.0;
   const TerrainLoads& l = t.loads;
   for (std::size_t k = 0; k < l.surface_nodes.size(); ++k) {
     const int i = t.surface.node_ids[l.surface_nodes[k]];
     s.fx[i] += l.fx_N[k], s.fy[i] += l.fy_N[k], s.fz[i] += l.fz_N[k];
-    power += l.fx_N[k] * s.vx[i] + l.fy_N[k] * s.vy[i] + l.fz_N[k] * s.vz[i];
+    s.contact_fx[i] += l.fx_N[k], s.contact_fy[i] += l.fy_N[k], s.contact_fz[i] += l.fz_N[k];
   }
   t.window_impulse_Ns[0] += s.dt_s * l.total_x_N, t.window_impulse_Ns[1] += s.dt_s * l.total_y_N;
   t.window_impulse_Ns[2] += s.dt_s * l.total_z_N;
   if (++t.substep == t.substeps) t.substep = 0, ++t.exchange;
-  return power;
 }
 
 }  // namespace
@@ -281,13 +282,16 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   element_forces(m, s);
   gather_forces(m, s);
   const double t1 = s.time_stages ? omp_get_wtime() : 0.0;
-  const double pressure_power = pressure_forces(m, s);
+  pressure_forces(m, s);
   const double t2 = s.time_stages ? omp_get_wtime() : 0.0;
-  double contact_power = road_contact(m, s);
+  std::fill(s.contact_fx.begin(), s.contact_fx.end(), 0.0);
+  std::fill(s.contact_fy.begin(), s.contact_fy.end(), 0.0);
+  std::fill(s.contact_fz.begin(), s.contact_fz.end(), 0.0);
+  road_contact(m, s);
   const double t3 = s.time_stages ? omp_get_wtime() : 0.0;
   if (s.terrain.port) {
     receive_loads(s);
-    contact_power += terrain_loads(s);
+    terrain_loads(s);
   }
   const double t3b = s.time_stages ? omp_get_wtime() : 0.0;
   // Mass-proportional damping on the free nodes (dynamic relaxation).
@@ -299,10 +303,28 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
       const double c = s.damping_per_s * m.node_mass_kg[i];
       const double gx = -c * s.vx[i], gy = -c * s.vy[i], gz = -c * s.vz[i];
       s.fx[i] += gx, s.fy[i] += gy, s.fz[i] += gz;
-      damping_power += gx * s.vx[i] + gy * s.vy[i] + gz * s.vz[i];
     }
   }
+  for (std::size_t k = 0; k < s.rim_nodes.size(); ++k) {
+    const int n = s.rim_nodes[k];
+    s.rim_node_v_old[3 * k] = s.vx[n], s.rim_node_v_old[3 * k + 1] = s.vy[n], s.rim_node_v_old[3 * k + 2] = s.vz[n];
+  }
   const double rim_power = rim_update(m, s, drive);
+  // The work of the pressure, contact and damping forces over the step is their value
+  // at t times the velocity at t, the mean of the half-step velocities (central
+  // difference: x(t+dt) - x(t-dt) = 2 dt v(t)). With the velocity at t - dt/2 alone the
+  // booked work lags by f . a dt^2 / 2 per step; on a rolling tyre the pressure on the
+  // liner (outward) meets its centripetal acceleration (inward) on every step, which
+  // booked about p V omega^2 dt of work per second that was never done: an apparent loss
+  // growing with the distance rolled.
+  double pressure_power = 0.0, contact_power = 0.0;
+  for (std::size_t k = 0; k < s.rim_nodes.size(); ++k) {
+    const int n = s.rim_nodes[k];
+    const double mx = 0.5 * (s.rim_node_v_old[3 * k] + s.vx[n]), my = 0.5 * (s.rim_node_v_old[3 * k + 1] + s.vy[n]),
+                 mz = 0.5 * (s.rim_node_v_old[3 * k + 2] + s.vz[n]);
+    pressure_power += s.pressure_fx[n] * mx + s.pressure_fy[n] * my + s.pressure_fz[n] * mz;
+    contact_power += s.contact_fx[n] * mx + s.contact_fy[n] * my + s.contact_fz[n] * mz;
+  }
   // Stage 6: central difference on the free nodes.
   double kinetic = 0.0;
   bool finite = true;
@@ -314,6 +336,9 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
     // kinetic energy at t from the mean of the half-step velocities
     const double mx = 0.5 * (ux + s.vx[i]), my = 0.5 * (uy + s.vy[i]), mz = 0.5 * (uz + s.vz[i]);
     kinetic += 0.5 * m.node_mass_kg[i] * (mx * mx + my * my + mz * mz);
+    pressure_power += s.pressure_fx[i] * mx + s.pressure_fy[i] * my + s.pressure_fz[i] * mz;
+    contact_power += s.contact_fx[i] * mx + s.contact_fy[i] * my + s.contact_fz[i] * mz;
+    if (s.damping_per_s > 0.0) damping_power -= s.damping_per_s * m.node_mass_kg[i] * (ux * mx + uy * my + uz * mz);
     s.x[i] += dt * s.vx[i], s.y[i] += dt * s.vy[i], s.z[i] += dt * s.vz[i];
     finite = finite && std::isfinite(s.x[i] + s.y[i] + s.z[i]);
   }

@@ -97,6 +97,11 @@ struct State3d {
   std::vector<double> x, y, z;     // current node positions
   std::vector<double> vx, vy, vz;  // velocities at t - dt/2
   std::vector<double> fx, fy, fz;  // total nodal force at t
+  // The parts of it from the inflation pressure and from road or terrain contact:
+  // step3d books their work with the velocity at t, the mean of the half steps.
+  std::vector<double> pressure_fx, pressure_fy, pressure_fz;
+  std::vector<double> contact_fx, contact_fy, contact_fz;
+  std::vector<double> rim_node_v_old;  // rim node velocities at t - dt/2 (x, y, z per rim node)
   std::vector<double> element_force;  // hex * 24 + a * 3 + k
   std::vector<double> element_energy;     // strain + hourglass [J]
   std::vector<double> element_hourglass;  // hourglass part [J]
