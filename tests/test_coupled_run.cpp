@@ -219,7 +219,7 @@ TEST(CoupledRun, KillingTheTerrainStopsTheOthersWithinFiveSecondsAndKeepsTheForc
 
 namespace {
 
-// Results of a coupled run of the coarse torque scene.
+// The summaries of a coupled run.
 struct SceneRun {
   nlohmann::json summary, terrain, tyre;
 };
@@ -228,58 +228,65 @@ SceneRun read_run(const std::string& dir) {
   return {read_json(dir + "/summary.json"), read_json(dir + "/terrain/summary.json"), read_json(dir + "/tyre/summary.json")};
 }
 
-SceneRun run_scene(const std::string& name, int domain, const std::string& sets) {
+// The tyre indentation (thesis 3.3) made coarse and short for the suite: 30 mm
+// particles (2,800), 0.06 s of loading (the 4000 N ramp takes 0.04 s).
+const std::string kIndentation = test_support::scene_path("tyre_indentation");
+const std::string kCoarseIndentation = " --set sph.particle_spacing_m=0.03 --set tyre.stages.loading_s=0.06";
+
+SceneRun run_indentation(const std::string& name, int domain, const std::string& sets) {
   const auto dir = test_support::scratch(name);
-  auto [code, out] = shell(bin() + "/cosim run " + kScene + " --out " + dir + " --dds cyclone --domain " +
-                           std::to_string(domain) + " --no-vtk --quiet" + sets);
+  auto [code, out] = shell(bin() + "/cosim run " + kIndentation + " --out " + dir + " --dds cyclone --domain " +
+                           std::to_string(domain) + " --no-vtk --quiet" + kCoarseIndentation + sets);
   EXPECT_EQ(code, 0) << out;
   return read_run(dir);
 }
 
 double relative_difference(double a, double reference) { return std::fabs(a - reference) / std::fabs(reference); }
 
+// What the particles received, the tyre received, to rounding: 1e-9 of the
+// vertical impulse (one window lost or counted twice is 1/1800 of it or more,
+// rounding over a few thousand windows ~1e-13).
+void expect_momentum_balance(const SceneRun& run) {
+  const auto& on_tyre = run.summary["results"]["tyre"]["terrain_impulse_Ns"];
+  const auto& on_particles = run.terrain["surface_impulse_on_particles_Ns"];
+  ASSERT_GT(on_tyre[2].get<double>(), 10.0);  // the snow carried the tyre
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(on_tyre[c].get<double>(), -on_particles[c].get<double>(), 1e-9 * on_tyre[2].get<double>()) << c;
+}
+
 }  // namespace
 
-// The multi-rate scheme against the common-step reference on the coarse torque
-// scene (docs/coupling.md, "Accuracy of the multi-rate scheme"), and the active
-// terrain domain against all particles active:
-//  - momentum over the windows balances exactly: what the particles received,
-//    the tyre received, to rounding (1e-9 of the vertical impulse: one window
-//    lost or counted twice is 1/3600 of it; rounding over 3600 windows ~1e-13);
-//  - vertical pressure force F4, sinkage and contact area within 2 % of the
-//    common step (the bound; the common-step run itself moves them by
-//    up to 2.0 % with a 5 % smaller step, docs/coupling.md);
-//  - the longitudinal forces are a transient here (the spin collapses under
-//    300 N m, docs/coupling.md), whose means move by 7 % (F3), 6 % (F5) and 20 %
-//    (drawbar pull) between common-step runs that differ only by a 5 % smaller
-//    step: they are compared in docs/coupling.md, not here;
-//  - each solver's energy balance closes as well as before the multi-rate
-//    scheme: the common step's were 2.8-2.9 % (tyre) and 3.2 % (terrain, before
-//    the terrain booked the contact work with the kick's mean velocity), so
-//    3.5 % bounds both; measured now: common step 2.9 % and 0.02 %, multi-rate
-//    1.4 % and 1.0 %;
-//  - the active domain (margin 0.1 m: 94 % of the particles active on this small
-//    block) keeps F4, sinkage and area within the noise floor of the scene
-//    measured in docs/coupling.md (the common-step runs spread by 3.4 %, 0.4 %
-//    and 5.3 %): 2 %, 0.5 % and 2 %. That the domain's bookkeeping itself does
-//    not change the run is checked bit for bit in the test above.
+// The multi-rate scheme against the common-step reference (docs/coupling.md,
+// "Accuracy of the multi-rate scheme"), and the active terrain domain:
+//  - on the coarse torque scene (the multi-rate run above) and on a coarse,
+//    short tyre indentation in all three schemes below, momentum over the
+//    windows balances exactly and each solver's energy balance closes as well
+//    as the common step's did before the multi-rate scheme (2.8-2.9 % tyre,
+//    3.2 % terrain): 3.5 %;
+//  - the indentation's contact area, sinkage and vertical pressure force F4
+//    agree within 2 % (the bound; at 20 mm the two schemes agree to
+//    0.06 %). The torque scene is not used for this: its rolling stage is a
+//    transient whose means move by 3-10 % between common-step runs that differ
+//    by a 5 % smaller step (docs/coupling.md);
+//  - an active domain of margin 0.05 m keeps them within 1 % of all particles
+//    active (the bound; the box is barely wider than the tyre's contact
+//    band, so margin 0.05 m leaves part of it at rest). That its bookkeeping does
+//    not touch the dynamics is checked bit for bit in the cross-vendor test.
 TEST(CoupledRun, MultirateMatchesTheCommonStepAndBalancesMomentum) {
   ASSERT_EQ(cross_vendor_run().code, 0) << cross_vendor_run().out;
-  const SceneRun multirate = read_run(cross_vendor_run().dir);
-  const SceneRun common = run_scene("coupled_common_step", 11, " --set coupling.scheme=COMMON_STEP");
-  const SceneRun active = run_scene("coupled_active_domain", 12, " --set coupling.active_domain_margin_m=0.1");
+  const SceneRun torque = read_run(cross_vendor_run().dir);
+  const SceneRun common = run_indentation("indentation_common_step", 11, " --set coupling.scheme=COMMON_STEP");
+  const SceneRun multirate = run_indentation("indentation_multirate", 12, "");
+  const SceneRun active = run_indentation("indentation_active_domain", 13, " --set coupling.active_domain_margin_m=0.05");
   ASSERT_EQ(common.summary["status"], "completed");
+  ASSERT_EQ(multirate.summary["status"], "completed");
   ASSERT_EQ(active.summary["status"], "completed");
   EXPECT_EQ(common.summary["performance"]["tyre_substeps"], 1);
   EXPECT_GT(multirate.summary["performance"]["tyre_substeps"].get<int>(), 1);
   EXPECT_EQ(multirate.summary["performance"]["active_particle_share"].get<double>(), 1.0);
   EXPECT_LT(active.summary["performance"]["active_particle_share"].get<double>(), 1.0);
-  for (const SceneRun* run : {&common, &multirate, &active}) {
-    const auto& on_tyre = run->summary["results"]["tyre"]["terrain_impulse_Ns"];
-    const auto& on_particles = run->terrain["surface_impulse_on_particles_Ns"];
-    ASSERT_GT(on_tyre[2].get<double>(), 100.0);  // the snow carried the tyre
-    for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(on_tyre[c].get<double>(), -on_particles[c].get<double>(), 1e-9 * on_tyre[2].get<double>()) << c;
+  for (const SceneRun* run : {&torque, &common, &multirate, &active}) {
+    expect_momentum_balance(*run);
     EXPECT_LT(run->tyre["energy"]["relative_error"].get<double>(), 0.035);
     EXPECT_LT(run->terrain["energy"]["relative_error"].get<double>(), 0.035);
   }
@@ -289,7 +296,7 @@ TEST(CoupledRun, MultirateMatchesTheCommonStepAndBalancesMomentum) {
         << key << ": multi-rate " << multirate.summary["results"][key] << ", common step " << reference[key];
     EXPECT_LT(relative_difference(active.summary["results"][key].get<double>(),
                                   multirate.summary["results"][key].get<double>()),
-              std::string(key) == "sinkage_m" ? 0.005 : 0.02)
+              0.01)
         << key << ": active domain " << active.summary["results"][key] << ", all active "
         << multirate.summary["results"][key];
   }

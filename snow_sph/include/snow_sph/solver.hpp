@@ -65,9 +65,9 @@ class Solver {
   const double* surface_impulse_Ns() const { return surface_impulse_; }
 
   // Active terrain domain (as Chrono's CRM "active domains"; docs/coupling.md):
-  // with a coupled surface and margin_m > 0, only particles within margin_m of
-  // the box around the surface sent (the tyre below its contact band), or still
-  // faster than wake_speed, are integrated. The others keep their state
+  // with a coupled surface and margin_m > 0, only particles within margin_m, in
+  // plan (x, y; at every depth), of the box around the surface sent (the tyre
+  // below its contact band), or still faster than wake_speed, are integrated. The others keep their state
   // (stress, density, hardening) at rest and act on active neighbours as a
   // resting boundary, whose work is booked as external work. A particle that
   // comes into the domain has its forces computed for one step before it moves.
