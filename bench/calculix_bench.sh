@@ -3,7 +3,7 @@
 # block of ../shared/notes/peers.md: 0.2 x 0.2 x 0.05 m, one-point hexahedra (C3D8R),
 # the tread's Yeoh rubber, bottom fixed, top pushed down at 0.5 m/s; each code at its
 # own stable step. Prints us per element-step on 1 and 2 threads and the ratio.
-#   bench/calculix_bench.sh [--json FILE] [--meshes "44x44x11:100:400 68x68x17:50:200"]
+#   bench/calculix_bench.sh [--json FILE] [--meshes "44x44x11:50:250 68x68x17:30:150"]
 #                           [--repeats R] [--ccx-repeats R]
 # A mesh is NXxNYxNZ:N1:N2. ccx runs N1 and N2 increments; its set-up (reading, mass
 # matrix, structure) is removed by differencing: (t2 - t1) / (N2 - N1) / elements
@@ -16,7 +16,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${COSIM_BIN_DIR:-build/bin}
-MESHES="44x44x11:100:400 68x68x17:50:200"
+MESHES="44x44x11:50:250 68x68x17:30:150"
 REPEATS=3 CCX_REPEATS=1 JSON=""
 while [ $# -gt 0 ]; do
   case $1 in
