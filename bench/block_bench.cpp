@@ -5,7 +5,7 @@
 // stable step. Prints us per element-step on 1 and 2 threads (wall time: median of the
 // repeats and the spread; CPU time of all threads: median), the share of the element
 // kernels + gather in the step and the peak memory.
-//   block_bench [--divisions NX NY NZ] [--steps N | --end-time S] [--repeats R]
+//   block_bench [--divisions NX NY NZ] [--steps N | --end-time S] [--repeats R] [--threads 1 2]
 // bench/calculix_bench.sh runs it beside CalculiX's ccx on the same block.
 #include <algorithm>
 #include <cmath>
@@ -104,7 +104,7 @@ Run run(const Model3d& model, const State3d& start, const std::vector<int>& top,
 
 int main(int argc, char** argv) {
   CLI::App app{"block_bench: tyre_fe's explicit step on the CalculiX peer block"};
-  std::vector<int> div{44, 44, 11};
+  std::vector<int> div{44, 44, 11}, thread_counts{1, 2};
   int steps = 400, repeats = 3;
   double end_time_s = 0.0;
   app.add_option("--divisions", div, "elements along x, y, z")->expected(3);
@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
   app.add_option("--end-time", end_time_s, "run to the step nearest this time [s] (instead of --steps)")
       ->check(CLI::PositiveNumber);
   app.add_option("--repeats", repeats, "runs per thread count (median reported)")->check(CLI::PositiveNumber);
+  app.add_option("--threads", thread_counts, "thread counts to time")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
   try {
     const int n[3] = {div[0], div[1], div[2]};
@@ -129,7 +130,7 @@ int main(int argc, char** argv) {
     std::printf("block_bench: %d x %d x %d = %zu hexahedra, %zu nodes, c %.1f m/s, dt %.4g s (%.3f h/c), %d steps,"
                 " end time %.4g s\n", n[0], n[1], n[2], ne, x.size(), c, model.stable_dt_s,
                 model.stable_dt_s * c / h, steps, steps * model.stable_dt_s);
-    for (int threads : {1, 2}) {
+    for (int threads : thread_counts) {
       omp_set_num_threads(threads);
       std::vector<Run> runs;
       for (int r = 0; r < repeats; ++r) runs.push_back(run(model, start, top, steps));
@@ -140,8 +141,8 @@ int main(int argc, char** argv) {
       std::sort(cpu_us.begin(), cpu_us.end());
       // RESULT lines are read by bench/calculix_bench.sh.
       std::printf("RESULT threads %d us_per_element_step %.4f min %.4f max %.4f dt_s %.6g internal_share %.3f"
-                  " top_force_N %.2f cpu_us_per_element_step %.4f\n", threads, us[us.size() / 2], us.front(), us.back(), model.stable_dt_s,
-                  runs.back().internal_share, runs.back().top_force_N,
+                  " top_force_N %.2f cpu_us_per_element_step %.4f\n", threads, us[us.size() / 2], us.front(),
+                  us.back(), model.stable_dt_s, runs.back().internal_share, runs.back().top_force_N,
                   cpu_us[cpu_us.size() / 2]);
     }
     rusage usage{};  // peak memory
