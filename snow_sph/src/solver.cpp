@@ -39,16 +39,31 @@ bool Solver::finite() const {
   return true;
 }
 
+namespace {
+
+// One particle's stable step: h / (c + |v|) (Courant) and sqrt(h / |a|), and
+// which of the two is the smaller.
+struct ParticleLimit {
+  double dt = 1e30, speed = 0.0, acceleration = 0.0;
+  bool by_acceleration = false;
+};
+ParticleLimit particle_limit(const Particles& p, std::size_t i, double h) {
+  ParticleLimit l;
+  l.speed = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+  l.dt = h / (p.sound_speed[i] + l.speed);
+  l.acceleration = std::sqrt(p.ax[i] * p.ax[i] + p.ay[i] * p.ay[i] + p.az[i] * p.az[i]);
+  if (l.acceleration > 0 && std::sqrt(h / l.acceleration) < l.dt)
+    l.dt = std::sqrt(h / l.acceleration), l.by_acceleration = true;
+  return l;
+}
+
+}  // namespace
+
 double Solver::stability_limit_dt() const {
   const Particles& p = m_.particles;
   const double h = m_.kernel.h;
   double limit = 1e30;
-  for (std::size_t i = 0; i < p.n_real; ++i) {
-    const double v = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
-    limit = std::min(limit, h / (p.sound_speed[i] + v));
-    const double a = std::sqrt(p.ax[i] * p.ax[i] + p.ay[i] * p.ay[i] + p.az[i] * p.az[i]);
-    if (a > 0) limit = std::min(limit, std::sqrt(h / a));
-  }
+  for (std::size_t i = 0; i < p.n_real; ++i) limit = std::min(limit, particle_limit(p, i, h).dt);
   if (!m_.bodies.empty() && m_.settings.contact_stiffness > 0) {
     double m_min = 1e30;
     for (std::size_t i = 0; i < p.n_real; ++i) m_min = std::min(m_min, p.mass[i]);
@@ -64,19 +79,19 @@ std::string Solver::limit_cause() const {
   const Particles& p = m_.particles;
   const double h = m_.kernel.h;
   double limit = 1e30;
-  std::string cause = "contact penalty";
+  std::size_t worst = p.n_real;
+  ParticleLimit worst_limit;
   for (std::size_t i = 0; i < p.n_real; ++i) {
-    const double v = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
-    const double a = std::sqrt(p.ax[i] * p.ax[i] + p.ay[i] * p.ay[i] + p.az[i] * p.az[i]);
-    const std::string where = "particle " + std::to_string(p.id[i]) + " at (" + cosim::number_text(p.x[i]) + ", " +
-                              cosim::number_text(p.y[i]) + ", " + cosim::number_text(p.z[i]) + ") m";
-    if (h / (p.sound_speed[i] + v) < limit)
-      limit = h / (p.sound_speed[i] + v), cause = "sound speed " + cosim::number_text(p.sound_speed[i]) +
-                                                  " m/s + speed " + cosim::number_text(v) + " m/s of " + where;
-    if (a > 0 && std::sqrt(h / a) < limit)
-      limit = std::sqrt(h / a), cause = "acceleration " + cosim::number_text(a) + " m/s^2 of " + where;
+    const ParticleLimit l = particle_limit(p, i, h);
+    if (l.dt < limit) limit = l.dt, worst = i, worst_limit = l;
   }
-  return cause;
+  if (worst == p.n_real) return "contact penalty";
+  const std::string where = "particle " + std::to_string(p.id[worst]) + " at (" + cosim::number_text(p.x[worst]) +
+                            ", " + cosim::number_text(p.y[worst]) + ", " + cosim::number_text(p.z[worst]) + ") m";
+  if (worst_limit.by_acceleration)
+    return "acceleration " + cosim::number_text(worst_limit.acceleration) + " m/s^2 of " + where;
+  return "sound speed " + cosim::number_text(p.sound_speed[worst]) + " m/s + speed " +
+         cosim::number_text(worst_limit.speed) + " m/s of " + where;
 }
 
 double Solver::stable_dt() const {

@@ -167,6 +167,14 @@ bool inside_triangle(const V3& q, const V3& a, const V3& b, const V3& c, double 
   return w[0] >= 0 && v >= 0 && t >= 0;
 }
 
+// Facet f's area vector (x2 - x0) x (x3 - x1) / 2: its length is the area, exact
+// for a planar quad, and it points along the outward normal.
+V3 facet_area_vector(const ContactSurface& s, std::size_t f) {
+  const std::uint32_t* q = &s.facet_nodes[4 * f];
+  auto node = [&](std::uint32_t n) { return V3(s.x[n], s.y[n], s.z[n]); };
+  return 0.5 * (node(q[2]) - node(q[0])).cross(node(q[3]) - node(q[1]));
+}
+
 }  // namespace
 
 double held_load_window_limit(const ContactSurface& surface, double stiffness_N_per_m, double spacing_m) {
@@ -174,13 +182,8 @@ double held_load_window_limit(const ContactSurface& surface, double stiffness_N_
   if (surface.node_mass_kg.size() != n || !(stiffness_N_per_m > 0)) return std::numeric_limits<double>::infinity();
   std::vector<double> area(n, 0.0);
   for (std::size_t f = 0; f < surface.facet_count(); ++f) {
-    const std::uint32_t* q = &surface.facet_nodes[4 * f];
-    // Quad area from its diagonals: |d1 x d2| / 2.
-    const double d1[3] = {surface.x[q[2]] - surface.x[q[0]], surface.y[q[2]] - surface.y[q[0]], surface.z[q[2]] - surface.z[q[0]]};
-    const double d2[3] = {surface.x[q[3]] - surface.x[q[1]], surface.y[q[3]] - surface.y[q[1]], surface.z[q[3]] - surface.z[q[1]]};
-    const double c[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
-    const double quarter = 0.125 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    for (int a = 0; a < 4; ++a) area[q[a]] += quarter;
+    const double quarter = 0.25 * facet_area_vector(surface, f).norm();
+    for (int a = 0; a < 4; ++a) area[surface.facet_nodes[4 * f + a]] += quarter;
   }
   double limit = std::numeric_limits<double>::infinity();
   for (std::size_t a = 0; a < n; ++a)
@@ -225,10 +228,9 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
   std::vector<double> area(nf);
   auto node = [&](std::uint32_t n) { return V3(s.x[n], s.y[n], s.z[n]); };
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t* q = &s.facet_nodes[4 * f];
-    const V3 cross = (node(q[2]) - node(q[0])).cross(node(q[3]) - node(q[1]));
-    area[f] = 0.5 * cross.norm();
-    normal[f] = area[f] > 0 ? V3(cross / (2.0 * area[f])) : V3::Zero();
+    const V3 a = facet_area_vector(s, f);
+    area[f] = a.norm();
+    normal[f] = area[f] > 0 ? V3(a / area[f]) : V3::Zero();
   }
   const FacetGrid grid = bin_facets(s, reach);
 
