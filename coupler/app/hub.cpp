@@ -4,15 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "coupler/facet_geometry.hpp"
 #include "cosim/coupling_window.hpp"
 #include "coupler/forces.hpp"
 #include "coupler/friction.hpp"
 #include "coupler/wire.hpp"
-#include "cosim/interrupt.hpp"
 #include "cosim/outputs.hpp"
-#include "cosim/progress.hpp"
+#include "cosim/participant.hpp"
 
 namespace coupler {
 namespace {
@@ -48,228 +48,266 @@ FrictionRules friction_rules(const cosim::LoadedScene& loaded) {
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// The coupler under the run skeleton (cosim/participant.hpp). One window reads:
+//   tyre's surface in -> friction per facet -> surface out to the terrain ->
+//   wheel state in -> terrain's loads in -> loads out to the tyre -> decomposition.
+class CouplerRun final : public cosim::Participant {
+ public:
+  CouplerRun(Session& session, const cosim::LoadedScene& loaded, const HubOptions& options)
+      : session_(session), loaded_(loaded), scene_(loaded.message), options_(options) {}
+
+  double initialize(cosim::RunRecord& record) override;
+  bool advance() override;
+  double time_s() const override { return sim_time_; }
+  std::uint64_t steps() const override { return step_; }
+  void output(cosim::RunRecord&) override {}
+  void finalize(cosim::RunRecord& record) override;
+  void abort(const std::string& reason) noexcept override {
+    try {
+      session_.send_failure(step_, std::string("coupler: ") + reason);
+    } catch (const std::exception&) {
+    }
+  }
+  void plots(cosim::RunRecord& record) override;
+
+ private:
+  struct Row {
+    double t;
+    ForceDecomposition d;
+  };
+  Session& session_;
+  const cosim::LoadedScene& loaded_;
+  const sc::Scene& scene_;
+  HubOptions options_;
+  cosim::RunRecord* record_ = nullptr;
+  std::unique_ptr<tp::Reader<tp::SurfaceMesh>> mesh_in_;
+  std::unique_ptr<tp::Reader<tp::SurfaceKinematics>> tyre_kinematics_in_;
+  std::unique_ptr<tp::Reader<tp::WheelState>> wheel_in_;
+  std::unique_ptr<tp::Writer<tp::SurfaceKinematics>> terrain_kinematics_out_;
+  std::unique_ptr<tp::Reader<tp::ContactLoads>> terrain_loads_in_;
+  std::unique_ptr<tp::Writer<tp::ContactLoads>> tyre_loads_out_;
+  std::unique_ptr<tp::Writer<tp::ForceSummary>> summary_out_;
+  std::unique_ptr<tp::SampleFilter> mesh_filter_, tyre_filter_, wheel_filter_, terrain_filter_;
+  cosim::CsvWriter* csv_ = nullptr;
+  std::vector<FacetTag> tags_;
+  std::vector<double> mu_all_, x_, y_, z_;
+  tp::SurfaceMesh mesh_;
+  tp::SurfaceKinematics k_;
+  tp::WheelState wheel_;
+  tp::ContactLoads loads_;
+  std::vector<Row> rows_;
+  FacetLoads last_facets_;
+  DecompositionOptions decomposition_;
+  double rolling_radius_ = 0.36, window_s_ = 0.0;
+  int substeps_ = 1;
+  std::uint64_t step_ = 0;
+  double sim_time_ = 0.0;
+  double exchange_s_ = 0.0, nodes_sent_ = 0.0, facets_sent_ = 0.0, loaded_nodes_ = 0.0;
+  bool joined_ = false;
+};
+
+double CouplerRun::initialize(cosim::RunRecord& record) {
+  record_ = &record;
+  const auto& c = scene_.coupling();
+  nlohmann::json& summary = record.summary();
+  const FrictionRules rules = friction_rules(loaded_);
+  const TerrainKind terrain = terrain_kind(scene_);
+  const bool sipes = scene_.tyre().tread().variant() == sc::BLOCK_SIPES;
+  auto& p = session_.participant();
+  mesh_in_ = p.create_reader<tp::SurfaceMesh>();
+  tyre_kinematics_in_ = p.create_reader<tp::SurfaceKinematics>(channel_qos<tp::SurfaceKinematics>(kTyreChannel));
+  wheel_in_ = p.create_reader<tp::WheelState>();
+  terrain_kinematics_out_ = p.create_writer<tp::SurfaceKinematics>(channel_qos<tp::SurfaceKinematics>(kTerrainChannel));
+  terrain_loads_in_ = p.create_reader<tp::ContactLoads>(channel_qos<tp::ContactLoads>(kTerrainChannel));
+  tyre_loads_out_ = p.create_writer<tp::ContactLoads>(channel_qos<tp::ContactLoads>(kTyreChannel));
+  summary_out_ = p.create_writer<tp::ForceSummary>();
+  if (!options_.quiet)
+    std::fprintf(stderr, "[coupler] waiting for the tyre and the terrain (run %016llx)\n",
+                 static_cast<unsigned long long>(session_.run_id()));
+  const tp::HandshakeResult joined =
+      session_.join({tp::Role::tyre, tp::Role::terrain}, 0.0,
+                    {mesh_in_.get(), tyre_kinematics_in_.get(), wheel_in_.get(), terrain_kinematics_out_.get(),
+                     terrain_loads_in_.get(), tyre_loads_out_.get()});
+  // The coupling window (docs/coupling.md): the terrain's stable step, the
+  // tyre sub-cycling inside it (multi-rate), or the smaller of the two steps
+  // for both (the common-step reference).
+  const double tyre_dt = joined.peer_time_step_s[0], terrain_dt = joined.peer_time_step_s[1];
+  if (!(tyre_dt > 0) || !(terrain_dt > 0))
+    throw cosim::Error("the tyre (" + cosim::number_text(tyre_dt) + " s) and the terrain (" +
+                       cosim::number_text(terrain_dt) + " s) must both propose a stable step");
+  const bool common_step = c.scheme() == sc::COMMON_STEP;
+  window_s_ = common_step ? std::min(tyre_dt, terrain_dt) : terrain_dt;
+  substeps_ = cosim::substeps_per_window(window_s_, tyre_dt);
+  session_.announce_start(window_s_, common_step ? "common step: the smaller stable step"
+                                                 : "multi-rate: the terrain's step, the tyre sub-cycles");
+  summary["time_step"] = {{"agreed_dt_s", window_s_}, {"coupling_window_s", window_s_}, {"tyre_substeps", substeps_},
+                          {"tyre_proposed_dt_s", tyre_dt}, {"terrain_proposed_dt_s", terrain_dt},
+                          {"scheme", common_step ? "common step: one step for both, every step exchanged"
+                                                 : "multi-rate: one exchange per terrain step, the tyre sub-cycles "
+                                                   "with the terrain's loads held"}};
+  summary["friction"] = {{"terrain", terrain_kind_name(terrain)}, {"tread_has_sipes", sipes},
+                         {"base", rules.base_mu}, {"sipe_equivalent_on_tread_top", rules.sipe_equivalent_mu}};
+  if (!options_.quiet)
+    std::fprintf(stderr, "[coupler] started: window %.4g s, %d tyre sub-steps (tyre %.4g s, terrain %.4g s)\n",
+                 window_s_, substeps_, tyre_dt, terrain_dt);
+  joined_ = true;
+  mesh_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
+  tyre_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
+  wheel_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
+  terrain_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
+  if (!session_.wait_step(*mesh_in_, *mesh_filter_, 0, mesh_, "SurfaceMesh", tp::Role::tyre))
+    throw cosim::Error("stopped before the first step");
+  tags_.assign(mesh_.facet_tags.begin(), mesh_.facet_tags.end());
+  fill_facet_friction(tags_, sipes, terrain, rules, mu_all_);
+  x_ = mesh_.x_m, y_ = mesh_.y_m, z_ = mesh_.z_m;
+  rolling_radius_ = c.rolling_radius_m() > 0 ? c.rolling_radius_m() : 0.36;
+  record.results()["rolling_radius_for_F5_m"] = rolling_radius_;
+  csv_ = &record.series("forces.csv",
+                        {"time_s", "step", "traction_force_N", "motion_resistance_N", "groove_force_N",
+                         "vertical_pressure_force_N", "rolling_resistance_moment_Nm", "rolling_resistance_force_N",
+                         "drawbar_pull_N", "net_longitudinal_pressure_force_N", "traction_minus_rrf_N", "sinkage_m",
+                         "contact_area_m2", "rim_x_m", "rim_z_m", "spin_rate_rad_per_s", "applied_torque_Nm",
+                         "rm2_Nm", "contact_force_x_N", "contact_force_z_N"});
+  return scene_.tyre().stages().loading_s() + scene_.tyre().stages().rolling_s();
+}
+
+bool CouplerRun::advance() {
+  // Exchange, in: the tyre's surface of this window.
+  if (!session_.wait_step(*tyre_kinematics_in_, *tyre_filter_, step_, k_, "SurfaceKinematics", tp::Role::tyre))
+    return false;
+  const auto t0 = Clock::now();
+  // Friction per listed facet: the coupler's decision (thesis 4.3, 4.4, 6.1).
+  // Sipe walls are not handed on: a sipe is a slit (0.6 mm) that no particle
+  // enters, and its effect on the snow is the tread top's equivalent
+  // coefficient (thesis 4.4, 6.1); particles would otherwise be caught
+  // between its two coincident walls.
+  std::size_t kept = 0;
+  k_.friction_coefficient.resize(k_.facets.size());
+  for (std::size_t i = 0; i < k_.facets.size(); ++i) {
+    const auto f = k_.facets[i];
+    if (f >= mu_all_.size())
+      throw cosim::Error("SurfaceKinematics of step " + std::to_string(step_) + ": facet " + std::to_string(f) +
+                         " is not in the surface mesh");
+    if (tags_[f] == FacetTag::sipe_wall) continue;
+    k_.facets[kept] = f, k_.friction_coefficient[kept] = mu_all_[f], ++kept;
+  }
+  k_.facets.resize(kept), k_.friction_coefficient.resize(kept);
+  terrain_kinematics_out_->write(k_);  // exchange, out: the surface with its friction, to the terrain
+  exchange_s_ += seconds_since(t0);
+  nodes_sent_ += k_.nodes.size(), facets_sent_ += k_.facets.size();
+  // Exchange, in: the wheel and the terrain's loads of this window; out: the loads to the tyre.
+  if (!session_.wait_step(*wheel_in_, *wheel_filter_, step_, wheel_, "WheelState", tp::Role::tyre)) return false;
+  if (!session_.wait_step(*terrain_loads_in_, *terrain_filter_, step_, loads_, "ContactLoads", tp::Role::terrain))
+    return false;
+  const auto t1 = Clock::now();
+  tyre_loads_out_->write(loads_);
+  exchange_s_ += seconds_since(t1);
+  loaded_nodes_ += loads_.nodes.size();
+  sim_time_ = k_.header.sim_time_s;
+  // The decomposition (thesis ch. 2), from the current facet geometry.
+  for (std::size_t j = 0; j < k_.nodes.size(); ++j) {
+    const auto n = k_.nodes[j];
+    x_[n] = k_.x_m[j], y_[n] = k_.y_m[j], z_[n] = k_.z_m[j];
+  }
+  const FacetGeometry geometry = quad_facet_geometry(x_, y_, z_, mesh_.facet_nodes);
+  const FacetLoads facet_loads = facet_loads_from_contact(loads_, tags_, geometry);
+  const ForceDecomposition d = decompose_forces(facet_loads, wheel_input(wheel_, rolling_radius_), decomposition_);
+  summary_out_->write(force_summary(d, k_.header));
+  double fx = 0.0, fz = 0.0;
+  for (std::size_t j = 0; j < loads_.nodes.size(); ++j) fx += loads_.fx_N[j], fz += loads_.fz_N[j];
+  csv_->row({sim_time_, double(step_), d.traction_force_N, d.motion_resistance_N, d.groove_force_N,
+             d.vertical_pressure_force_N, d.rolling_resistance_moment_Nm, d.rolling_resistance_force_N,
+             d.drawbar_pull_N, d.net_longitudinal_pressure_force_N, d.traction_minus_rrf_N, d.sinkage_m,
+             d.contact_area_m2, wheel_.rim_x_m, wheel_.rim_z_m, wheel_.spin_rate_radps, wheel_.applied_torque_Nm,
+             wheel_.reaction_moment_y_Nm, fx, fz});
+  rows_.push_back({sim_time_, d});
+  last_facets_ = facet_loads;
+  ++step_;
+  return true;
+}
+
+void CouplerRun::finalize(cosim::RunRecord& record) {
+  nlohmann::json& summary = record.summary();
+  nlohmann::json& results = record.results();
+  summary["rejected_samples"] = {{"other_run", session_.rejected_run_id()}, {"wrong_step", session_.rejected_step()}};
+  if (!joined_) return;
+  const auto& c = scene_.coupling();
+  // Steady means over the last average_last_s of the run (thesis 6.1: results
+  // "taken at the steady state region").
+  const double window = c.average_last_s() > 0 ? c.average_last_s() : scene_.tyre().stages().average_last_s();
+  const double from = rows_.empty() ? 0.0 : rows_.back().t - window;
+  ForceDecomposition mean;
+  long n = 0;
+  for (const auto& r : rows_) {
+    if (window > 0 && r.t < from) continue;
+    const auto& d = r.d;
+    mean.traction_force_N += d.traction_force_N, mean.motion_resistance_N += d.motion_resistance_N;
+    mean.groove_force_N += d.groove_force_N, mean.rolling_resistance_force_N += d.rolling_resistance_force_N;
+    mean.drawbar_pull_N += d.drawbar_pull_N;
+    mean.net_longitudinal_pressure_force_N += d.net_longitudinal_pressure_force_N;
+    mean.traction_minus_rrf_N += d.traction_minus_rrf_N, mean.sinkage_m += d.sinkage_m;
+    mean.contact_area_m2 += d.contact_area_m2, mean.vertical_pressure_force_N += d.vertical_pressure_force_N;
+    ++n;
+  }
+  auto avg = [&](double v) { return n ? v / n : 0.0; };
+  results["averaging_window_s"] = window;
+  results["averaged_steps"] = n;
+  results["traction_force_N"] = avg(mean.traction_force_N);
+  results["motion_resistance_N"] = avg(mean.motion_resistance_N);
+  results["groove_force_N"] = avg(mean.groove_force_N);
+  results["rolling_resistance_force_N"] = avg(mean.rolling_resistance_force_N);
+  results["drawbar_pull_N"] = avg(mean.drawbar_pull_N);
+  results["net_longitudinal_pressure_force_N"] = avg(mean.net_longitudinal_pressure_force_N);
+  results["traction_minus_rrf_N"] = avg(mean.traction_minus_rrf_N);
+  results["vertical_pressure_force_N"] = avg(mean.vertical_pressure_force_N);
+  results["sinkage_m"] = avg(mean.sinkage_m);
+  results["contact_area_m2"] = avg(mean.contact_area_m2);
+  if (!rows_.empty()) {
+    results["final_contact_area_m2"] = rows_.back().d.contact_area_m2;
+    results["final_sinkage_m"] = rows_.back().d.sinkage_m;
+  }
+  for (const auto* f : {mesh_filter_.get(), tyre_filter_.get(), wheel_filter_.get(), terrain_filter_.get()})
+    session_.count_rejections(*f);
+  summary["rejected_samples"] = {{"other_run", session_.rejected_run_id()}, {"wrong_step", session_.rejected_step()}};
+  const double wall = record.wall_s();
+  const double steps = static_cast<double>(step_);
+  summary["performance"] = {{"coupler_forwarding_s", exchange_s_}, {"steps_per_s", wall > 0 ? steps / wall : 0.0},
+                            {"windows_per_s", wall > 0 ? steps / wall : 0.0},
+                            {"coupling_window_s", window_s_}, {"tyre_substeps", substeps_}};
+  summary["payload"] = {{"mean_surface_nodes_per_step", step_ ? nodes_sent_ / steps : 0.0},
+                        {"mean_surface_facets_per_step", step_ ? facets_sent_ / steps : 0.0},
+                        {"mean_loaded_nodes_per_step", step_ ? loaded_nodes_ / steps : 0.0}};
+  // Contact pressure of the last window, per contacted facet (a picture and its numbers).
+  cosim::CsvWriter map(record.path("contact_pressure.csv"),
+                       {"centroid_x_m", "centroid_y_m", "centroid_z_m", "contact_pressure_Pa", "contact_area_m2"});
+  for (std::size_t i = 0; i < last_facets_.size(); ++i) {
+    const double a = last_facets_.contact_area_m2[i];
+    const double pn = std::sqrt(last_facets_.pressure_x_N[i] * last_facets_.pressure_x_N[i] +
+                                last_facets_.pressure_y_N[i] * last_facets_.pressure_y_N[i] +
+                                last_facets_.pressure_z_N[i] * last_facets_.pressure_z_N[i]);
+    map.row({last_facets_.centroid_x_m[i], last_facets_.centroid_y_m[i], last_facets_.centroid_z_m[i],
+             a > 0 ? pn / a : 0.0, a});
+  }
+}
+
+void CouplerRun::plots(cosim::RunRecord& record) {
+  if (!joined_) return;
+  const std::string name = scene_.name();
+  record.plot_map("contact_pressure.csv", "contact_pressure.png", 1, 2, 4,
+                  name + ": contact pressure on the tyre (last step, seen from above)", "x [m]", "y [m]",
+                  "pressure [Pa]");
+  if (!rows_.empty())
+    record.plot("forces.csv", "forces.png", 1,
+                {{3, "traction F3"}, {4, "motion resistance F1"}, {5, "groove F2"}, {8, "F5"}, {9, "drawbar pull"}},
+                name + ": force decomposition", "time [s]", "force [N]");
+}
+
 }  // namespace
 
 nlohmann::json run_hub(Session& session, const cosim::LoadedScene& loaded, const HubOptions& options) {
-  const sc::Scene& scene = loaded.message;
-  const auto& c = scene.coupling();
-  cosim::make_folder(options.out_dir);
-  const std::string out = options.out_dir;
-  nlohmann::json summary = {{"scene", scene.name()}, {"scene_file", loaded.file},
-                            {"revision", cosim::source_revision()}, {"participant", "coupler"},
-                            {"status", "running"}};
-  nlohmann::json results = nlohmann::json::object();
-  std::unique_ptr<cosim::CsvWriter> csv;
-  std::uint64_t step = 0;
-  double sim_time = 0.0;
-  const auto start = Clock::now();
-  auto write_summary = [&](const std::string& status) {
-    summary["status"] = status;
-    summary["results"] = results;
-    summary["wall_time_s"] = seconds_since(start);
-    summary["sim_time_s"] = sim_time;
-    summary["steps"] = step;
-    summary["rejected_samples"] = {{"other_run", session.rejected_run_id()}, {"wrong_step", session.rejected_step()}};
-    cosim::write_json(out + "/summary.json", summary);
-  };
-  try {
-    const FrictionRules rules = friction_rules(loaded);
-    const TerrainKind terrain = terrain_kind(scene);
-    const bool sipes = scene.tyre().tread().variant() == sc::BLOCK_SIPES;
-    auto& p = session.participant();
-    auto mesh_in = p.create_reader<tp::SurfaceMesh>();
-    auto tyre_kinematics_in = p.create_reader<tp::SurfaceKinematics>(channel_qos<tp::SurfaceKinematics>(kTyreChannel));
-    auto wheel_in = p.create_reader<tp::WheelState>();
-    auto terrain_kinematics_out = p.create_writer<tp::SurfaceKinematics>(channel_qos<tp::SurfaceKinematics>(kTerrainChannel));
-    auto terrain_loads_in = p.create_reader<tp::ContactLoads>(channel_qos<tp::ContactLoads>(kTerrainChannel));
-    auto tyre_loads_out = p.create_writer<tp::ContactLoads>(channel_qos<tp::ContactLoads>(kTyreChannel));
-    auto summary_out = p.create_writer<tp::ForceSummary>();
-    if (!options.quiet) std::fprintf(stderr, "[coupler] waiting for the tyre and the terrain (run %016llx)\n",
-                                     static_cast<unsigned long long>(session.run_id()));
-    const tp::HandshakeResult joined = session.join(
-        {tp::Role::tyre, tp::Role::terrain}, 0.0,
-        {mesh_in.get(), tyre_kinematics_in.get(), wheel_in.get(), terrain_kinematics_out.get(),
-         terrain_loads_in.get(), tyre_loads_out.get()});
-    // The coupling window (docs/coupling.md): the terrain's stable step, the
-    // tyre sub-cycling inside it (multi-rate), or the smaller of the two steps
-    // for both (the common-step reference).
-    const double tyre_dt = joined.peer_time_step_s[0], terrain_dt = joined.peer_time_step_s[1];
-    if (!(tyre_dt > 0) || !(terrain_dt > 0))
-      throw cosim::Error("the tyre (" + cosim::number_text(tyre_dt) + " s) and the terrain (" +
-                         cosim::number_text(terrain_dt) + " s) must both propose a stable step");
-    const bool common_step = c.scheme() == sc::COMMON_STEP;
-    const double dt = common_step ? std::min(tyre_dt, terrain_dt) : terrain_dt;
-    const int substeps = cosim::substeps_per_window(dt, tyre_dt);
-    session.announce_start(dt, common_step ? "common step: the smaller stable step"
-                                           : "multi-rate: the terrain's step, the tyre sub-cycles");
-    summary["time_step"] = {{"agreed_dt_s", dt}, {"coupling_window_s", dt}, {"tyre_substeps", substeps},
-                            {"tyre_proposed_dt_s", tyre_dt}, {"terrain_proposed_dt_s", terrain_dt},
-                            {"scheme", common_step ? "common step: one step for both, every step exchanged"
-                                                   : "multi-rate: one exchange per terrain step, the tyre sub-cycles "
-                                                     "with the terrain's loads held"}};
-    summary["friction"] = {{"terrain", terrain_kind_name(terrain)}, {"tread_has_sipes", sipes},
-                           {"base", rules.base_mu}, {"sipe_equivalent_on_tread_top", rules.sipe_equivalent_mu}};
-    if (!options.quiet)
-      std::fprintf(stderr, "[coupler] started: window %.4g s, %d tyre sub-steps (tyre %.4g s, terrain %.4g s)\n", dt,
-                   substeps, tyre_dt, terrain_dt);
-
-    tp::SampleFilter mesh_filter(session.run_id()), tyre_filter(session.run_id()), wheel_filter(session.run_id()),
-        terrain_filter(session.run_id());
-    tp::SurfaceMesh mesh;
-    if (!session.wait_step(*mesh_in, mesh_filter, 0, mesh, "SurfaceMesh", tp::Role::tyre)) throw cosim::Error("stopped before the first step");
-    std::vector<FacetTag> tags(mesh.facet_tags.begin(), mesh.facet_tags.end());
-    std::vector<double> mu_all;
-    fill_facet_friction(tags, sipes, terrain, rules, mu_all);
-    std::vector<double> x = mesh.x_m, y = mesh.y_m, z = mesh.z_m;
-    const double rolling_radius = c.rolling_radius_m() > 0 ? c.rolling_radius_m() : 0.36;
-    results["rolling_radius_for_F5_m"] = rolling_radius;
-
-    csv = std::make_unique<cosim::CsvWriter>(
-        out + "/forces.csv",
-        std::vector<std::string>{"time_s", "step", "traction_force_N", "motion_resistance_N", "groove_force_N",
-                                 "vertical_pressure_force_N", "rolling_resistance_moment_Nm",
-                                 "rolling_resistance_force_N", "drawbar_pull_N", "net_longitudinal_pressure_force_N",
-                                 "traction_minus_rrf_N", "sinkage_m", "contact_area_m2", "rim_x_m", "rim_z_m",
-                                 "spin_rate_rad_per_s", "applied_torque_Nm", "rm2_Nm", "contact_force_x_N",
-                                 "contact_force_z_N"});
-    struct Row { double t; ForceDecomposition d; };
-    std::vector<Row> rows;
-    const double planned = scene.tyre().stages().loading_s() + scene.tyre().stages().rolling_s();
-    cosim::Progress progress("coupler", planned, options.quiet);
-    tp::SurfaceKinematics k;
-    tp::WheelState wheel;
-    tp::ContactLoads loads;
-    double exchange_s = 0.0, nodes_sent = 0.0, facets_sent = 0.0, loaded_nodes = 0.0;
-    DecompositionOptions decomposition;
-    FacetLoads last_facets;
-    for (step = 0;; ++step) {
-      if (cosim::interrupt_requested()) throw cosim::Error("interrupted by a signal at step " + std::to_string(step));
-      if (!session.wait_step(*tyre_kinematics_in, tyre_filter, step, k, "SurfaceKinematics", tp::Role::tyre)) break;
-      const auto t0 = Clock::now();
-      // Friction per listed facet: the coupler's decision (thesis 4.3, 4.4, 6.1).
-      // Sipe walls are not handed on: a sipe is a slit (0.6 mm) that no particle
-      // enters, and its effect on the snow is the tread top's equivalent
-      // coefficient (thesis 4.4, 6.1); particles would otherwise be caught
-      // between its two coincident walls.
-      std::size_t kept = 0;
-      k.friction_coefficient.resize(k.facets.size());
-      for (std::size_t i = 0; i < k.facets.size(); ++i) {
-        const auto f = k.facets[i];
-        if (f >= mu_all.size())
-          throw cosim::Error("SurfaceKinematics of step " + std::to_string(step) + ": facet " + std::to_string(f) +
-                             " is not in the surface mesh");
-        if (tags[f] == FacetTag::sipe_wall) continue;
-        k.facets[kept] = f, k.friction_coefficient[kept] = mu_all[f], ++kept;
-      }
-      k.facets.resize(kept), k.friction_coefficient.resize(kept);
-      terrain_kinematics_out->write(k);
-      exchange_s += seconds_since(t0);
-      nodes_sent += k.nodes.size(), facets_sent += k.facets.size();
-      if (!session.wait_step(*wheel_in, wheel_filter, step, wheel, "WheelState", tp::Role::tyre)) break;
-      if (!session.wait_step(*terrain_loads_in, terrain_filter, step, loads, "ContactLoads", tp::Role::terrain)) break;
-      const auto t1 = Clock::now();
-      tyre_loads_out->write(loads);
-      exchange_s += seconds_since(t1);
-      loaded_nodes += loads.nodes.size();
-      sim_time = k.header.sim_time_s;
-      // The decomposition, from the current facet geometry.
-      for (std::size_t j = 0; j < k.nodes.size(); ++j) {
-        const auto n = k.nodes[j];
-        x[n] = k.x_m[j], y[n] = k.y_m[j], z[n] = k.z_m[j];
-      }
-      const FacetGeometry geometry = quad_facet_geometry(x, y, z, mesh.facet_nodes);
-      const FacetLoads facet_loads = facet_loads_from_contact(loads, tags, geometry);
-      const ForceDecomposition d = decompose_forces(facet_loads, wheel_input(wheel, rolling_radius), decomposition);
-      summary_out->write(force_summary(d, k.header));
-      double fx = 0.0, fz = 0.0;
-      for (std::size_t j = 0; j < loads.nodes.size(); ++j) fx += loads.fx_N[j], fz += loads.fz_N[j];
-      csv->row({sim_time, double(step), d.traction_force_N, d.motion_resistance_N, d.groove_force_N,
-                d.vertical_pressure_force_N, d.rolling_resistance_moment_Nm, d.rolling_resistance_force_N,
-                d.drawbar_pull_N, d.net_longitudinal_pressure_force_N, d.traction_minus_rrf_N, d.sinkage_m,
-                d.contact_area_m2, wheel.rim_x_m, wheel.rim_z_m, wheel.spin_rate_radps, wheel.applied_torque_Nm,
-                wheel.reaction_moment_y_Nm, fx, fz});
-      rows.push_back({sim_time, d});
-      last_facets = facet_loads;
-      progress.update(sim_time, step + 1);
-    }
-    progress.finish(sim_time, step);
-    csv->flush();
-    // Steady means over the last average_last_s of the run (thesis 6.1: results
-    // "taken at the steady state region").
-    const double window = c.average_last_s() > 0 ? c.average_last_s() : scene.tyre().stages().average_last_s();
-    const double from = rows.empty() ? 0.0 : rows.back().t - window;
-    ForceDecomposition mean;
-    long n = 0;
-    for (const auto& r : rows) {
-      if (window > 0 && r.t < from) continue;
-      const auto& d = r.d;
-      mean.traction_force_N += d.traction_force_N, mean.motion_resistance_N += d.motion_resistance_N;
-      mean.groove_force_N += d.groove_force_N, mean.rolling_resistance_force_N += d.rolling_resistance_force_N;
-      mean.drawbar_pull_N += d.drawbar_pull_N;
-      mean.net_longitudinal_pressure_force_N += d.net_longitudinal_pressure_force_N;
-      mean.traction_minus_rrf_N += d.traction_minus_rrf_N, mean.sinkage_m += d.sinkage_m;
-      mean.contact_area_m2 += d.contact_area_m2, mean.vertical_pressure_force_N += d.vertical_pressure_force_N;
-      ++n;
-    }
-    auto avg = [&](double v) { return n ? v / n : 0.0; };
-    results["averaging_window_s"] = window;
-    results["averaged_steps"] = n;
-    results["traction_force_N"] = avg(mean.traction_force_N);
-    results["motion_resistance_N"] = avg(mean.motion_resistance_N);
-    results["groove_force_N"] = avg(mean.groove_force_N);
-    results["rolling_resistance_force_N"] = avg(mean.rolling_resistance_force_N);
-    results["drawbar_pull_N"] = avg(mean.drawbar_pull_N);
-    results["net_longitudinal_pressure_force_N"] = avg(mean.net_longitudinal_pressure_force_N);
-    results["traction_minus_rrf_N"] = avg(mean.traction_minus_rrf_N);
-    results["vertical_pressure_force_N"] = avg(mean.vertical_pressure_force_N);
-    results["sinkage_m"] = avg(mean.sinkage_m);
-    results["contact_area_m2"] = avg(mean.contact_area_m2);
-    if (!rows.empty()) {
-      results["final_contact_area_m2"] = rows.back().d.contact_area_m2;
-      results["final_sinkage_m"] = rows.back().d.sinkage_m;
-    }
-    for (const auto* f : {&mesh_filter, &tyre_filter, &wheel_filter, &terrain_filter}) session.count_rejections(*f);
-    const double wall = seconds_since(start);
-    summary["performance"] = {{"coupler_forwarding_s", exchange_s}, {"steps_per_s", wall > 0 ? step / wall : 0.0},
-                              {"windows_per_s", wall > 0 ? step / wall : 0.0},
-                              {"coupling_window_s", dt}, {"tyre_substeps", substeps}};
-    summary["payload"] = {{"mean_surface_nodes_per_step", step ? nodes_sent / step : 0.0},
-                          {"mean_surface_facets_per_step", step ? facets_sent / step : 0.0},
-                          {"mean_loaded_nodes_per_step", step ? loaded_nodes / step : 0.0}};
-    csv.reset();
-    // Contact pressure of the last step, per contacted facet (a picture and its numbers).
-    {
-      cosim::CsvWriter map(out + "/contact_pressure.csv",
-                           {"centroid_x_m", "centroid_y_m", "centroid_z_m", "contact_pressure_Pa", "contact_area_m2"});
-      for (std::size_t i = 0; i < last_facets.size(); ++i) {
-        const double a = last_facets.contact_area_m2[i];
-        const double pn = std::sqrt(last_facets.pressure_x_N[i] * last_facets.pressure_x_N[i] +
-                                    last_facets.pressure_y_N[i] * last_facets.pressure_y_N[i] +
-                                    last_facets.pressure_z_N[i] * last_facets.pressure_z_N[i]);
-        map.row({last_facets.centroid_x_m[i], last_facets.centroid_y_m[i], last_facets.centroid_z_m[i],
-                 a > 0 ? pn / a : 0.0, a});
-      }
-    }
-    cosim::plot_csv_map(out + "/contact_pressure.csv", out + "/contact_pressure.png", 1, 2, 4,
-                        scene.name() + ": contact pressure on the tyre (last step, seen from above)", "x [m]", "y [m]",
-                        "pressure [Pa]");
-    if (!rows.empty()) {
-      cosim::plot_csv(out + "/forces.csv", out + "/forces.png", 1,
-                      {{3, "traction F3"}, {4, "motion resistance F1"}, {5, "groove F2"}, {8, "F5"}, {9, "drawbar pull"}},
-                      scene.name() + ": force decomposition", "time [s]", "force [N]");
-    }
-    write_summary("completed");
-    return summary;
-  } catch (const std::exception& e) {
-    if (csv) csv->flush();
-    try {
-      session.send_failure(step, std::string("coupler: ") + e.what());
-    } catch (const std::exception&) {
-    }
-    summary["error"] = e.what();
-    write_summary("failed");
-    throw cosim::Error(e.what());
-  }
+  cosim::RunRecord record(loaded, options.out_dir, "coupler");
+  CouplerRun run(session, loaded, options);
+  return cosim::run_participant(run, record, "coupler", options.quiet);
 }
 
 }  // namespace coupler

@@ -1,13 +1,12 @@
 #include "snow_sph/run.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 
 #include "cosim/error.hpp"
-#include "cosim/interrupt.hpp"
 #include "cosim/outputs.hpp"
-#include "cosim/parallel.hpp"
-#include "cosim/progress.hpp"
+#include "cosim/participant.hpp"
 #include "snow_sph/scene.hpp"
 #include "snow_sph/solver.hpp"
 
@@ -44,34 +43,77 @@ double surge_front(const Model& m) {
   return front + 0.5 * m.settings.spacing - m.container_min[0];
 }
 
-}  // namespace
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
-nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
-  const auto& scene = loaded.message;
-  cosim::make_folder(options.out_dir);
-  const std::string out = options.out_dir;
-  nlohmann::json summary = {{"scene", scene.name()},
-                            {"scene_file", loaded.file},
-                            {"revision", cosim::source_revision()},
-                            {"participants", {"snow_sph"}},
-                            {"threads", cosim::max_threads()},
-                            {"status", "running"}};
-  nlohmann::json overrides = nlohmann::json::object();
-  for (const auto& [k, v] : loaded.overrides) overrides[k] = v;
-  summary["overrides"] = overrides;
+// The SPH terrain under the run skeleton (cosim/participant.hpp): on its own
+// (plate sinkage, water column, dam break) or as the terrain of a coupled run,
+// whose step reads  advance -> [surface in -> contact -> loads out] -> complete.
+class SphRun final : public cosim::Participant {
+ public:
+  SphRun(const cosim::LoadedScene& loaded, const RunOptions& options)
+      : loaded_(loaded), scene_(loaded.message), options_(options), port_(options.exchange) {}
 
-  Model model = build_model(scene);
-  Solver solver(model);
-  const bool coupled = options.exchange != nullptr;
-  if (coupled) {
+  double initialize(cosim::RunRecord& record) override;
+  bool advance() override;
+  double time_s() const override { return solver_ ? solver_->time() : 0.0; }
+  std::uint64_t steps() const override { return solver_ ? solver_->steps() : 0; }
+  void output(cosim::RunRecord& record) override;
+  void finalize(cosim::RunRecord& record) override;
+  void finish_peers() override {
+    if (port_) port_->finish(false, "");
+  }
+  void abort(const std::string& reason) noexcept override {
+    if (!port_) return;
+    try {
+      port_->finish(true, reason);
+    } catch (const std::exception&) {
+      // The peers learn of it by their time-out.
+    }
+  }
+  void plots(cosim::RunRecord& record) override;
+
+ private:
+  // Exchange stage: the surface of exchange n in, its contact with the
+  // particles, the loads out. False when the surface's owner ended the run.
+  bool exchange_surface(std::uint64_t exchange);
+  void record_rows(bool force);
+  void write_frame();
+
+  const cosim::LoadedScene& loaded_;
+  const cosim::scene::Scene& scene_;
+  RunOptions options_;
+  SurfaceExchange* port_;
+  std::unique_ptr<Model> model_;
+  std::unique_ptr<Solver> solver_;
+  cosim::CsvWriter *energy_csv_ = nullptr, *bodies_csv_ = nullptr, *front_csv_ = nullptr, *probe_csv_ = nullptr,
+                   *contact_csv_ = nullptr;
+  std::unique_ptr<cosim::VtkSeries> vtk_;
+  double wall_at_coupling_s_ = 0.0, exchange_wait_s_ = 0.0;
+  cosim::RunRecord* record_ = nullptr;
+  std::uint64_t exchange_ = 0;
+  bool stopped_ = false;
+  double dt_min_ = 1e300, dt_max_ = 0.0, dt_sum_ = 0.0;
+  std::size_t clamped_ = 0;
+  double probe_sum_ = 0.0, probe_time_ = 0.0, probe_from_ = 0.0, last_dt_ = 0.0;
+  double next_csv_ = 0.0, next_vtk_ = 0.0, csv_interval_ = 0.0, vtk_interval_ = 0.0;
+  double floor_x_ = 0.0, floor_y_ = 0.0;
+};
+
+double SphRun::initialize(cosim::RunRecord& record) {
+  record_ = &record;
+  model_ = std::make_unique<Model>(build_model(scene_));
+  Model& model = *model_;
+  solver_ = std::make_unique<Solver>(model);
+  if (port_) {
     // Planned end: the tyre's coupled stages (the tyre ends the run).
-    const auto& st = scene.tyre().stages();
+    const auto& st = scene_.tyre().stages();
     model.settings.end_time = st.loading_s() + st.rolling_s();
     model.settings.max_steps = 0;
   }
-  cosim::Progress progress(scene.name(), model.settings.end_time, options.quiet);
-  const auto& sph = scene.sph();
-
+  const auto& sph = scene_.sph();
+  nlohmann::json& summary = record.summary();
   summary["particles"] = model.particles.n_real;
   summary["kernel"] = kernel_name(model.kernel.type);
   summary["particle_spacing_m"] = model.settings.spacing;
@@ -96,160 +138,159 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
     }
   }
   summary["materials"] = materials;
+  probe_from_ = model.settings.end_time - sph.probes().average_last_s();
+  csv_interval_ = scene_.output().csv_interval_s();
+  vtk_interval_ = options_.write_vtk ? scene_.output().vtk_interval_s() : 0.0;
+  floor_x_ = 0.5 * (model.container_min[0] + model.container_max[0]);
+  floor_y_ = 0.5 * (model.container_min[1] + model.container_max[1]);
 
-  std::unique_ptr<cosim::CsvWriter> energy_csv, bodies_csv, front_csv, probe_csv, contact_csv;
-  double coupled_from_s = 0.0;  // wall time when the coupled stepping began
-  std::unique_ptr<cosim::VtkSeries> vtk;
-  double dt_min = 1e300, dt_max = 0.0, dt_sum = 0.0;
-  std::size_t clamped = 0;
-  double probe_sum = 0.0, probe_time = 0.0;
-  const double t_end = model.settings.end_time;
-  const double probe_from = t_end - sph.probes().average_last_s();
-  double next_csv = 0.0, next_vtk = 0.0;
-  const double csv_interval = scene.output().csv_interval_s();
-  const double vtk_interval = options.write_vtk ? scene.output().vtk_interval_s() : 0.0;
-  const Particles& p = model.particles;
-
-  auto write_vtk = [&]() {
-    if (!vtk) return;
-    const std::size_t n = p.n_real;
-    std::vector<double> id(p.id.begin(), p.id.begin() + n), mat(n);
-    for (std::size_t i = 0; i < n; ++i) mat[i] = p.material[i];
-    vtk->write(solver.time(), n, p.x.data(), p.y.data(), p.z.data(),
-               {{"density_kg_per_m3", p.density.data()},
-                {"pressure_Pa", p.pressure.data()},
-                {"volumetric_plastic_strain", p.eps_vol_pl.data()},
-                {"material", mat.data()},
-                {"id", id.data()}},
-               {{"velocity_m_per_s", p.vx.data(), p.vy.data(), p.vz.data()}});
-  };
-  auto record = [&](bool force) {
-    const double t = solver.time();
-    if (!force && t + 1e-15 < next_csv) return;
-    next_csv = t + csv_interval;
-    const EnergyBalance& e = solver.energy();
-    energy_csv->row({t, e.kinetic, e.internal, e.elastic, e.plastic_dissipation,
-                     e.viscous_dissipation, e.contact_dissipation, e.external_work,
-                     e.relative_error()});
-    if (bodies_csv) {
-      std::vector<double> row{t};
-      for (const auto& b : model.bodies) {
-        row.insert(row.end(), {b.z, b.z0 - b.z, b.vz, b.contact_force_z_domain * b.symmetry_factor,
-                               b.applied_force_z_now(t)});
-      }
-      bodies_csv->row(row);
-    }
-    if (front_csv) front_csv->row({t, surge_front(model)});
-    if (contact_csv) {
-      const SurfaceLoads& l = solver.surface_loads();
-      double area = 0.0, in_contact = 0.0;
-      for (double a : l.facet_contact_area_m2) area += a;
-      for (auto c : l.particles_in_contact) in_contact += c;
-      contact_csv->row({t, l.total_fx_N, l.total_fy_N, l.total_fz_N, area, in_contact});
-    }
-  };
-
-  try {
-    if (coupled) {
-      const auto& c = scene.coupling();
-      SurfaceContactParameters contact;
-      contact.particle_radius_m = 0.5 * model.settings.spacing;
-      contact.stiffness_N_per_m = model.settings.contact_stiffness *
-                                  (c.contact_stiffness_scale() > 0 ? c.contact_stiffness_scale() : 1.0);
-      solver.couple(options.exchange, contact);
-      // A particle still moving faster than 1 cm/s stays in the active domain
-      // (docs/coupling.md): the resting terrain is at rest to well below that.
-      solver.set_active_domain(c.active_domain_margin_m(), 0.01);
-      solver.prepare();  // sound speeds and accelerations of the first step
-      const double limit = solver.stability_limit_dt();
-      const double agreed = options.exchange->connect(model.settings.cfl * limit);
-      if (!(agreed > 0) || agreed > limit)
-        throw cosim::Error("the agreed coupled time step " + cosim::number_text(agreed) +
-                           " s is above the terrain's stable limit " + cosim::number_text(limit) + " s");
-      model.settings.fixed_dt = agreed;
-      coupled_from_s = progress.elapsed_s();
-      summary["coupled_dt_s"] = agreed;
-      summary["surface_contact"] = {{"particle_radius_m", contact.particle_radius_m},
-                                    {"stiffness_N_per_m", contact.stiffness_N_per_m},
-                                    {"damping_ratio", contact.damping_ratio}};
-      contact_csv = std::make_unique<cosim::CsvWriter>(
-          out + "/terrain_contact.csv",
-          std::vector<std::string>{"time_s", "force_on_surface_x_N", "force_on_surface_y_N", "force_on_surface_z_N",
+  if (port_) {
+    const auto& c = scene_.coupling();
+    SurfaceContactParameters contact;
+    contact.particle_radius_m = 0.5 * model.settings.spacing;
+    contact.stiffness_N_per_m = model.settings.contact_stiffness *
+                                (c.contact_stiffness_scale() > 0 ? c.contact_stiffness_scale() : 1.0);
+    solver_->couple(contact);
+    // A particle still moving faster than 1 cm/s stays in the active domain
+    // (docs/coupling.md): the resting terrain is at rest to well below that.
+    solver_->set_active_domain(c.active_domain_margin_m(), 0.01);
+    solver_->prepare();  // sound speeds and accelerations of the first step
+    const double limit = solver_->stability_limit_dt();
+    const double agreed = port_->connect(model.settings.cfl * limit);
+    if (!(agreed > 0) || agreed > limit)
+      throw cosim::Error("the agreed coupled time step " + cosim::number_text(agreed) +
+                         " s is above the terrain's stable limit " + cosim::number_text(limit) + " s");
+    model.settings.fixed_dt = agreed;
+    wall_at_coupling_s_ = record.wall_s();
+    summary["coupled_dt_s"] = agreed;
+    summary["surface_contact"] = {{"particle_radius_m", contact.particle_radius_m},
+                                  {"stiffness_N_per_m", contact.stiffness_N_per_m},
+                                  {"damping_ratio", contact.damping_ratio}};
+    contact_csv_ = &record.series("terrain_contact.csv",
+                                  {"time_s", "force_on_surface_x_N", "force_on_surface_y_N", "force_on_surface_z_N",
                                    "contact_area_m2", "particles_in_contact"});
-    }
-    solver.initialise();
-    std::vector<std::string> energy_cols{"time_s", "kinetic_J", "internal_J", "elastic_stored_J",
-                                         "plastic_dissipation_J", "viscous_dissipation_J",
-                                         "contact_dissipation_J", "external_work_J",
-                                         "energy_relative_error"};
-    energy_csv = std::make_unique<cosim::CsvWriter>(out + "/energy.csv", energy_cols);
-    if (!model.bodies.empty()) {
-      std::vector<std::string> cols{"time_s"};
-      for (const auto& b : model.bodies)
-        for (const char* c : {"_z_m", "_displacement_m", "_velocity_z_m_per_s",
-                              "_contact_force_z_N", "_applied_force_z_N"})
-          cols.push_back(b.name + c);
-      bodies_csv = std::make_unique<cosim::CsvWriter>(out + "/bodies.csv", cols);
-    }
-    if (sph.probes().surge_front())
-      front_csv = std::make_unique<cosim::CsvWriter>(out + "/front.csv",
-                                                     std::vector<std::string>{"time_s", "front_m"});
-    if (sph.probes().floor_pressure())
-      probe_csv = std::make_unique<cosim::CsvWriter>(
-          out + "/floor_pressure.csv", std::vector<std::string>{"time_s", "floor_pressure_Pa"});
-    if (vtk_interval > 0) vtk = std::make_unique<cosim::VtkSeries>(out + "/vtk", "particles");
-    record(true);
-    if (vtk) write_vtk(), next_vtk = vtk_interval;
-    const double floor_x = 0.5 * (model.container_min[0] + model.container_max[0]);
-    const double floor_y = 0.5 * (model.container_min[1] + model.container_max[1]);
-    while (coupled || (solver.time() < t_end - 1e-12 &&
-                       (model.settings.max_steps == 0 || solver.steps() < model.settings.max_steps))) {
-      if (solver.stopped()) break;
-      const StepStats st = solver.step();
-      if (st.stopped) break;
-      dt_min = std::min(dt_min, st.dt), dt_max = std::max(dt_max, st.dt), dt_sum += st.dt;
-      clamped += st.clamped;
-      if (cosim::interrupt_requested())
-        throw cosim::Error("interrupted by a signal at step " + std::to_string(solver.steps()) +
-                           ", t = " + cosim::number_text(solver.time()) + " s");
-      if (!solver.finite())
-        throw cosim::Error("the solution became non-finite (NaN/Inf) at step " +
-                           std::to_string(solver.steps()) + ", t = " + cosim::number_text(solver.time()) + " s");
-      record(false);
-      if (probe_csv) {
-        const double pr = solver.pressure_at(floor_x, floor_y, model.container_min[2]);
-        if ((solver.steps() & 63u) == 0) probe_csv->row({solver.time(), pr});
-        if (solver.time() >= probe_from) probe_sum += pr * st.dt, probe_time += st.dt;
-      }
-      if (vtk && solver.time() + 1e-12 >= next_vtk) write_vtk(), next_vtk += vtk_interval;
-      progress.update(solver.time(), solver.steps());
-    }
-    record(true);
-    if (vtk && vtk->frames() > 0 && next_vtk - vtk_interval < solver.time() - 1e-12) write_vtk();
-    progress.finish(solver.time(), solver.steps());
-    summary["status"] = "completed";
-    if (coupled) options.exchange->finish(false, "");
-  } catch (const std::exception& e) {
-    summary["status"] = "failed";
-    summary["error"] = e.what();
-    if (coupled) {
-      try {
-        options.exchange->finish(true, e.what());
-      } catch (const std::exception&) {
-        // The peers learn of it by their time-out.
-      }
-    }
+    stopped_ = !exchange_surface(0);
   }
+  solver_->initialise();
+  energy_csv_ = &record.series("energy.csv", {"time_s", "kinetic_J", "internal_J", "elastic_stored_J",
+                                              "plastic_dissipation_J", "viscous_dissipation_J",
+                                              "contact_dissipation_J", "external_work_J", "energy_relative_error"});
+  if (!model.bodies.empty()) {
+    std::vector<std::string> cols{"time_s"};
+    for (const auto& b : model.bodies)
+      for (const char* c : {"_z_m", "_displacement_m", "_velocity_z_m_per_s", "_contact_force_z_N",
+                            "_applied_force_z_N"})
+        cols.push_back(b.name + c);
+    bodies_csv_ = &record.series("bodies.csv", cols);
+  }
+  if (sph.probes().surge_front()) front_csv_ = &record.series("front.csv", {"time_s", "front_m"});
+  if (sph.probes().floor_pressure())
+    probe_csv_ = &record.series("floor_pressure.csv", {"time_s", "floor_pressure_Pa"});
+  if (vtk_interval_ > 0) vtk_ = std::make_unique<cosim::VtkSeries>(record.path("vtk"), "particles");
+  record_rows(true);
+  if (vtk_) write_frame(), next_vtk_ = vtk_interval_;
+  return model.settings.end_time;
+}
 
-  const double wall = progress.elapsed_s();
+bool SphRun::exchange_surface(std::uint64_t exchange) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ContactSurface* surface = port_->surface(exchange);
+  exchange_wait_s_ += seconds_since(t0);
+  solver_->contact_surface(surface, exchange);
+  if (!surface) return false;
+  const auto t1 = std::chrono::steady_clock::now();
+  port_->send_loads(exchange, solver_->surface_loads());
+  exchange_wait_s_ += seconds_since(t1);
+  exchange_ = exchange;
+  return true;
+}
+
+bool SphRun::advance() {
+  const Settings& settings = model_->settings;
+  if (stopped_) return false;
+  if (!port_ && !(solver_->time() < settings.end_time - 1e-12 &&
+                  (settings.max_steps == 0 || solver_->steps() < settings.max_steps)))
+    return false;
+  const StepStats st = solver_->advance();
+  if (port_ && !exchange_surface(exchange_ + 1)) {
+    // The surface's owner ended the run during this step.
+    solver_->complete_step();
+    stopped_ = true;
+    return false;
+  }
+  solver_->complete_step();
+  dt_min_ = std::min(dt_min_, st.dt), dt_max_ = std::max(dt_max_, st.dt), dt_sum_ += st.dt;
+  clamped_ += st.clamped;
+  last_dt_ = st.dt;
+  if (!solver_->finite())
+    throw cosim::Error("the solution became non-finite (NaN/Inf) at step " + std::to_string(solver_->steps()) +
+                       ", t = " + cosim::number_text(solver_->time()) + " s");
+  return true;
+}
+
+void SphRun::output(cosim::RunRecord&) {
+  record_rows(false);
+  if (probe_csv_) {
+    const double pr = solver_->pressure_at(floor_x_, floor_y_, model_->container_min[2]);
+    if ((solver_->steps() & 63u) == 0) probe_csv_->row({solver_->time(), pr});
+    if (solver_->time() >= probe_from_) probe_sum_ += pr * last_dt_, probe_time_ += last_dt_;
+  }
+  if (vtk_ && solver_->time() + 1e-12 >= next_vtk_) write_frame(), next_vtk_ += vtk_interval_;
+}
+
+void SphRun::write_frame() {
+  const Particles& p = model_->particles;
+  const std::size_t n = p.n_real;
+  std::vector<double> id(p.id.begin(), p.id.begin() + n), mat(n);
+  for (std::size_t i = 0; i < n; ++i) mat[i] = p.material[i];
+  vtk_->write(solver_->time(), n, p.x.data(), p.y.data(), p.z.data(),
+              {{"density_kg_per_m3", p.density.data()},
+               {"pressure_Pa", p.pressure.data()},
+               {"volumetric_plastic_strain", p.eps_vol_pl.data()},
+               {"material", mat.data()},
+               {"id", id.data()}},
+              {{"velocity_m_per_s", p.vx.data(), p.vy.data(), p.vz.data()}});
+}
+
+void SphRun::record_rows(bool force) {
+  if (!energy_csv_) return;
+  const double t = solver_->time();
+  if (!force && t + 1e-15 < next_csv_) return;
+  next_csv_ = t + csv_interval_;
+  const EnergyBalance& e = solver_->energy();
+  energy_csv_->row({t, e.kinetic, e.internal, e.elastic, e.plastic_dissipation, e.viscous_dissipation,
+                    e.contact_dissipation, e.external_work, e.relative_error()});
+  if (bodies_csv_) {
+    std::vector<double> row{t};
+    for (const auto& b : model_->bodies)
+      row.insert(row.end(), {b.z, b.z0 - b.z, b.vz, b.contact_force_z_domain * b.symmetry_factor,
+                             b.applied_force_z_now(t)});
+    bodies_csv_->row(row);
+  }
+  if (front_csv_) front_csv_->row({t, surge_front(*model_)});
+  if (contact_csv_) {
+    const SurfaceLoads& l = solver_->surface_loads();
+    double area = 0.0, in_contact = 0.0;
+    for (double a : l.facet_contact_area_m2) area += a;
+    for (auto c : l.particles_in_contact) in_contact += c;
+    contact_csv_->row({t, l.total_fx_N, l.total_fy_N, l.total_fz_N, area, in_contact});
+  }
+}
+
+void SphRun::finalize(cosim::RunRecord& record) {
+  if (!solver_) return;  // the model was never built
+  const Model& model = *model_;
+  const Solver& solver = *solver_;
+  const Particles& p = model.particles;
+  record_rows(true);
+  if (vtk_ && vtk_->frames() > 0 && next_vtk_ - vtk_interval_ < solver.time() - 1e-12) write_frame();
+  nlohmann::json& summary = record.summary();
+  const double wall = record.wall_s();
   const auto steps = solver.steps();
-  summary["wall_time_s"] = wall;
-  summary["sim_time_s"] = solver.time();
-  summary["steps"] = steps;
-  summary["dt_s"] = {{"min", steps ? dt_min : 0.0}, {"mean", steps ? dt_sum / steps : 0.0}, {"max", dt_max},
+  summary["dt_s"] = {{"min", steps ? dt_min_ : 0.0}, {"mean", steps ? dt_sum_ / steps : 0.0}, {"max", dt_max_},
                      {"smallest_stability_limit", solver.smallest_limit_dt()}};
   summary["energy"] = energy_json(solver.energy());
-  summary["wall_clamps"] = clamped;
+  summary["wall_clamps"] = clamped_;
   summary["neighbour_list_rebuilds"] = solver.rebuilds();
   const double inter = static_cast<double>(solver.interactions());
   summary["performance"] = {
@@ -258,29 +299,30 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
       {"interactions_per_s", wall > 0 ? inter / wall : 0.0},
       {"note", "interactions: neighbour pairs within the support per step, counted from both "
                "sides as DualSPHysics counts them (each is visited twice a step: rates, forces)"}};
-  if (coupled) {
+  if (port_) {
     // Stepping only (model building and the start handshake excluded).
-    const double compute = wall - coupled_from_s - solver.exchange_wait_s();
-    summary["performance"]["coupled_wall_s"] = wall - coupled_from_s;
-    summary["performance"]["exchange_wait_s"] = solver.exchange_wait_s();
-    summary["performance"]["compute_s"] = compute;
-    summary["performance"]["compute_s_per_step"] = steps ? compute / steps : 0.0;
-    summary["performance"]["coupling_window_s"] = summary["coupled_dt_s"];
-    summary["performance"]["active_particle_share"] = solver.mean_active_share();
-    summary["performance"]["held_load_window_limit_s"] = solver.held_load_limit_dt();
-    summary["performance"]["smallest_terrain_stability_limit_s"] = solver.smallest_limit_dt();
-    summary["performance"]["active_domain_margin_m"] = scene.coupling().active_domain_margin_m();
+    const double compute = wall - wall_at_coupling_s_ - exchange_wait_s_;
+    auto& perf = summary["performance"];
+    perf["coupled_wall_s"] = wall - wall_at_coupling_s_;
+    perf["exchange_wait_s"] = exchange_wait_s_;
+    perf["compute_s"] = compute;
+    perf["compute_s_per_step"] = steps ? compute / steps : 0.0;
+    perf["coupling_window_s"] = summary["coupled_dt_s"];
+    perf["active_particle_share"] = solver.mean_active_share();
+    perf["held_load_window_limit_s"] = solver.held_load_limit_dt();
+    perf["smallest_terrain_stability_limit_s"] = solver.smallest_limit_dt();
+    perf["active_domain_margin_m"] = scene_.coupling().active_domain_margin_m();
     const double* impulse = solver.surface_impulse_Ns();
     summary["surface_impulse_on_particles_Ns"] = {impulse[0], impulse[1], impulse[2]};
   }
-
-  nlohmann::json results = nlohmann::json::object();
+  nlohmann::json& results = record.results();
   for (const auto& b : model.bodies) {
     results[b.name + "_displacement_m"] = b.z0 - b.z;
     results[b.name + "_velocity_z_m_per_s"] = b.vz;
     results[b.name + "_contact_force_z_N"] = b.contact_force_z_domain * b.symmetry_factor;
     results[b.name + "_applied_force_z_N"] = b.applied_force_z_now(solver.time());
   }
+  const auto& sph = scene_.sph();
   if (sph.probes().floor_pressure()) {
     double weight = 0.0;
     for (std::size_t i = 0; i < p.n_real; ++i) weight += p.mass[i];
@@ -288,7 +330,7 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
     const double area = (model.container_max[0] - model.container_min[0]) *
                         (model.container_max[1] - model.container_min[1]);
     const double hydro = weight / area;
-    const double bottom = probe_time > 0 ? probe_sum / probe_time : 0.0;
+    const double bottom = probe_time_ > 0 ? probe_sum_ / probe_time_ : 0.0;
     results["bottom_pressure_Pa"] = bottom;
     results["hydrostatic_pressure_Pa"] = hydro;
     results["bottom_pressure_relative_error"] = (bottom - hydro) / hydro;
@@ -300,34 +342,30 @@ nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& opt
     results["column_height_m"] = region.max().z() - region.min().z();
     results["final_front_m"] = surge_front(model);
   }
-  summary["results"] = results;
-  // Pictures a person would rather look at than read.
-  try {
-    energy_csv.reset(), bodies_csv.reset(), front_csv.reset(), probe_csv.reset(), contact_csv.reset();
-    nlohmann::json plots = nlohmann::json::array();
-    if (cosim::plot_csv(out + "/energy.csv", out + "/energy.png", 1,
-                        {{2, "kinetic"}, {3, "internal"}, {6, "viscous"}, {8, "external work"}},
-                        scene.name() + ": energy", "time [s]", "energy [J]"))
-      plots.push_back("energy.png");
-    if (!model.bodies.empty() &&
-        cosim::plot_csv(out + "/bodies.csv", out + "/bodies.png", 1, {{3, model.bodies[0].name + " displacement"}},
-                        scene.name() + ": " + model.bodies[0].name + " displacement", "time [s]", "displacement [m]"))
-      plots.push_back("bodies.png");
-    if (sph.probes().surge_front() &&
-        cosim::plot_csv(out + "/front.csv", out + "/front.png", 1, {{2, "surge front"}},
-                        scene.name() + ": surge front", "time [s]", "front position [m]"))
-      plots.push_back("front.png");
-    if (sph.probes().floor_pressure() &&
-        cosim::plot_csv(out + "/floor_pressure.csv", out + "/floor_pressure.png", 1, {{2, "floor pressure"}},
-                        scene.name() + ": floor pressure", "time [s]", "pressure [Pa]"))
-      plots.push_back("floor_pressure.png");
-    summary["plots"] = plots;
-  } catch (const std::exception&) {
-    // Plots are a convenience; the numbers are already on disk.
-  }
-  cosim::write_json(out + "/summary.json", summary);
-  if (summary["status"] == "failed") throw cosim::Error(summary["error"].get<std::string>());
-  return summary;
+}
+
+void SphRun::plots(cosim::RunRecord& record) {
+  if (!energy_csv_) return;
+  const std::string name = scene_.name();
+  record.plot("energy.csv", "energy.png", 1, {{2, "kinetic"}, {3, "internal"}, {6, "viscous"}, {8, "external work"}},
+              name + ": energy", "time [s]", "energy [J]");
+  if (bodies_csv_)
+    record.plot("bodies.csv", "bodies.png", 1, {{3, model_->bodies[0].name + " displacement"}},
+                name + ": " + model_->bodies[0].name + " displacement", "time [s]", "displacement [m]");
+  if (front_csv_)
+    record.plot("front.csv", "front.png", 1, {{2, "surge front"}}, name + ": surge front", "time [s]",
+                "front position [m]");
+  if (probe_csv_)
+    record.plot("floor_pressure.csv", "floor_pressure.png", 1, {{2, "floor pressure"}}, name + ": floor pressure",
+                "time [s]", "pressure [Pa]");
+}
+
+}  // namespace
+
+nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
+  cosim::RunRecord record(loaded, options.out_dir, "snow_sph");
+  SphRun run(loaded, options);
+  return cosim::run_participant(run, record, loaded.message.name(), options.quiet);
 }
 
 }  // namespace snow_sph

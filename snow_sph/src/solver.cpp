@@ -70,7 +70,7 @@ double Solver::stability_limit_dt() const {
     // Penalty spring: omega dt < 2 is the central-difference limit.
     limit = std::min(limit, 2.0 * std::sqrt(m_min / m_.settings.contact_stiffness));
   }
-  if (exchange_) limit = std::min(limit, surface_contact_limit_dt());
+  if (coupled_) limit = std::min(limit, surface_contact_limit_dt());
   return limit;
 }
 
@@ -497,28 +497,24 @@ void Solver::compute_contact(double dt) {
   energy_.contact_elastic = stored;
 }
 
-void Solver::couple(SurfaceExchange* exchange, const SurfaceContactParameters& parameters) {
-  exchange_ = exchange;
+void Solver::couple(const SurfaceContactParameters& parameters) {
+  coupled_ = true;
   surface_params_ = parameters;
 }
 
 double Solver::surface_contact_limit_dt() const {
-  if (!exchange_) return 0.0;
+  if (!coupled_) return 0.0;
   const Particles& p = m_.particles;
   double m_min = 1e30;
   for (std::size_t i = 0; i < p.n_real; ++i) m_min = std::min(m_min, p.mass[i]);
   return surface_contact_stable_dt(m_min, surface_params_.stiffness_N_per_m);
 }
 
-void Solver::exchange_surface(std::uint64_t exchange, double dt) {
-  const double t0 = omp_get_wtime();
-  const ContactSurface* surface = exchange_->surface(exchange);
-  exchange_wait_s_ += omp_get_wtime() - t0;
+void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchange) {
   last_surface_ = surface;
-  if (!surface) {
-    stopped_ = true;
-    return;
-  }
+  if (!surface) return;
+  // Exchange 0 is made with the particles at t_0, before the first step.
+  const double dt = exchange == 0 ? stable_dt() : step_dt_;
   if (exchange == 0) {
     // Multi-rate: the owner holds these loads over the window (docs/coupling.md).
     held_load_limit_dt_ = held_load_window_limit(*surface, surface_params_.stiffness_N_per_m, m_.settings.spacing);
@@ -550,9 +546,6 @@ void Solver::exchange_surface(std::uint64_t exchange, double dt) {
     fx += dfx, fy += dfy, fz += dfz;
   }
   surface_force_[0] = fx, surface_force_[1] = fy, surface_force_[2] = fz;
-  const double t1 = omp_get_wtime();
-  exchange_->send_loads(exchange, surface_loads_);
-  exchange_wait_s_ += omp_get_wtime() - t1;
 }
 
 void Solver::prepare() {
@@ -582,7 +575,6 @@ void Solver::prepare() {
 
 void Solver::initialise() {
   if (!prepared_) prepare();
-  if (exchange_) exchange_surface(0, stable_dt());
   if (domain_) {
     // Every particle's acceleration is that of the state at t_0 (prepare()), so
     // those inside the domain move from the first step.
@@ -643,7 +635,7 @@ void Solver::update_energy(double dt) {
 void Solver::set_active_domain(double margin_m, double wake_speed_m_per_s) {
   active_margin_m_ = margin_m;
   wake_speed_ = wake_speed_m_per_s;
-  domain_ = exchange_ != nullptr && margin_m > 0.0;
+  domain_ = coupled_ && margin_m > 0.0;
 }
 
 template <class Body>
@@ -701,6 +693,12 @@ void Solver::update_activity(const ContactSurface* surface) {
 }
 
 StepStats Solver::step() {
+  const StepStats stats = advance();
+  complete_step();
+  return stats;
+}
+
+StepStats Solver::advance() {
   Particles& p = m_.particles;
   StepStats stats;
   const double dt = stable_dt();
@@ -715,7 +713,7 @@ StepStats Solver::step() {
   // with the mean of the velocities before and after it (the central-difference
   // work; the velocity before alone books F^2 dt^2 / 2m too little a step, which
   // grows with the step: docs/coupling.md).
-  if (exchange_ && a_before_.size() >= 3 * p.n_real) {
+  if (coupled_ && a_before_.size() >= 3 * p.n_real) {
     double work = 0.0;
     const double* df = a_before_.data();
     auto contact_work = [&](std::size_t i) {
@@ -757,20 +755,22 @@ StepStats Solver::step() {
   compute_forces();
   wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), wall_power_.data());
   compute_contact(dt);
-  if (exchange_) {
-    exchange_surface(steps_ + 1, dt);
-    stats.stopped = stopped_;
-  }
+  step_dt_ = dt;
+  return stats;
+}
+
+void Solver::complete_step() {
+  const Particles& p = m_.particles;
+  const double dt = step_dt_;
   update_energy(dt);
   if (domain_) {
     for (std::uint32_t i : force_list_) interactions_ += p.neighbour_count[i];
-    if (!stats.stopped) update_activity(last_surface_);  // no surface: the run has ended
+    if (last_surface_) update_activity(last_surface_);  // no surface: the run has ended
   } else {
     for (std::size_t i = 0; i < p.n_real; ++i) interactions_ += p.neighbour_count[i];
   }
   dt_prev_ = dt;
   ++steps_;
-  return stats;
 }
 
 double Solver::pressure_at(double x, double y, double z) const {

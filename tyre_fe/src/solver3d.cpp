@@ -240,25 +240,13 @@ double rim_update(const Model3d& m, State3d& s, const RimDrive& d) {
   return power;
 }
 
-// Exchange stage, out (window start only): the surface at t_n to the terrain.
-void send_surface(const Model3d& m, State3d& s) {
-  TerrainCoupling& t = s.terrain;
-  if (t.substep != 0) return;
-  t.port->send(t.exchange, s, m);
-  // The last window is complete (the terrain books it on this surface too).
+}  // namespace
+
+void commit_window_impulse(TerrainCoupling& t) {
   for (int c = 0; c < 3; ++c) t.impulse_Ns[c] += t.window_impulse_Ns[c], t.window_impulse_Ns[c] = 0.0;
 }
 
-// Exchange stage, in (window start only): the terrain's loads of t_n, held
-// for the window's sub-steps (zero-order hold; docs/coupling.md).
-void receive_loads(State3d& s) {
-  TerrainCoupling& t = s.terrain;
-  if (t.substep == 0) t.port->receive(t.exchange, t.loads);
-}
-
-// Stage 4b: the held loads of the terrain on the surface nodes (their work is
-// booked with the contact forces, per node, in step3d).
-void terrain_loads(State3d& s) {
+void add_terrain_loads(State3d& s) {
   TerrainCoupling& t = s.terrain;
   const TerrainLoads& l = t.loads;
   for (std::size_t k = 0; k < l.surface_nodes.size(); ++k) {
@@ -271,14 +259,8 @@ void terrain_loads(State3d& s) {
   if (++t.substep == t.substeps) t.substep = 0, ++t.exchange;
 }
 
-}  // namespace
-
-bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
-  const double dt = s.dt_s;
+void compute_forces(const Model3d& m, State3d& s) {
   const double t0 = s.time_stages ? omp_get_wtime() : 0.0;
-  // The terrain works on the surface at t_n while the element forces are computed.
-  if (s.terrain.port) send_surface(m, s);
-  const double t_sent = s.time_stages ? omp_get_wtime() : 0.0;
   element_forces(m, s);
   gather_forces(m, s);
   const double t1 = s.time_stages ? omp_get_wtime() : 0.0;
@@ -288,11 +270,21 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   std::fill(s.contact_fy.begin(), s.contact_fy.end(), 0.0);
   std::fill(s.contact_fz.begin(), s.contact_fz.end(), 0.0);
   road_contact(m, s);
-  const double t3 = s.time_stages ? omp_get_wtime() : 0.0;
-  if (s.terrain.port) {
-    receive_loads(s);
-    terrain_loads(s);
+  if (s.time_stages) {
+    const double t3 = omp_get_wtime();
+    s.stage_times.internal_forces_s += t1 - t0;
+    s.stage_times.rest_s += t2 - t1;
+    s.stage_times.contact_s += t3 - t2;
   }
+}
+
+bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
+  compute_forces(m, s);
+  return integrate(m, s, drive);
+}
+
+bool integrate(const Model3d& m, State3d& s, const RimDrive& drive) {
+  const double dt = s.dt_s;
   const double t3b = s.time_stages ? omp_get_wtime() : 0.0;
   // Mass-proportional damping on the free nodes (dynamic relaxation).
   double damping_power = 0.0;
@@ -355,13 +347,7 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   en.damping_work_J += dt * damping_power;
   s.time_s += dt;
   ++s.step;
-  if (s.time_stages) {
-    const double t4 = omp_get_wtime();
-    s.stage_times.internal_forces_s += t1 - t_sent;
-    s.stage_times.contact_s += t3 - t2;
-    s.stage_times.exchange_s += (t_sent - t0) + (t3b - t3);
-    s.stage_times.rest_s += (t2 - t1) + (t4 - t3b);
-  }
+  if (s.time_stages) s.stage_times.rest_s += omp_get_wtime() - t3b;
   return finite && std::isfinite(internal);
 }
 

@@ -1,9 +1,13 @@
 #pragma once
 // Explicit central-difference time stepping of the SPH terrain. One step is a
-// list of stages over explicit state (Solver::step):
-//   kick (v^{n+1/2}) -> drift (x^{n+1}) -> walls/ghosts/neighbours ->
-//   rates (velocity gradient, continuity) -> material update (sigma^{n+1}) ->
-//   forces (a^{n+1}) -> rigid-body contact.
+// list of stages over explicit state:
+//   advance():        kick (v^{n+1/2}) -> drift (x^{n+1}) -> walls/ghosts/neighbours ->
+//                     rates (velocity gradient, continuity) -> material update
+//                     (sigma^{n+1}) -> forces (a^{n+1}) -> rigid-body contact
+//   [coupled: the run's exchange stage: surface of t_{n+1} in ->
+//    contact_surface() -> loads out]
+//   complete_step():  energy balance -> active domain.
+// step() is advance() + complete_step() for a terrain on its own.
 // Solid SPH after Libersky et al. (1993) and Gray, Monaghan & Swift (2001);
 // weakly compressible water after Monaghan (1994) with delta-SPH density
 // diffusion (Molteni & Colagrossi 2009, hydrostatic part removed as in
@@ -13,7 +17,7 @@
 #include <vector>
 
 #include "snow_sph/model.hpp"
-#include "snow_sph/surface_exchange.hpp"
+#include "snow_sph/surface_contact.hpp"
 
 namespace snow_sph {
 
@@ -44,7 +48,6 @@ struct StepStats {
   double dt = 0.0;
   std::size_t clamped = 0;
   bool rebuilt = false;
-  bool stopped = false;  // coupled: the surface's owner ended the run during this step
 };
 
 class Solver {
@@ -52,14 +55,16 @@ class Solver {
   explicit Solver(Model& model);
 
   // Couples the particles to an external surface (call before initialise()):
-  // contact with it is computed every step through `exchange`.
-  void couple(SurfaceExchange* exchange, const SurfaceContactParameters& parameters);
+  // its contact is computed by contact_surface() at every exchange, which the
+  // run makes between advance() and complete_step() (and once before initialise()).
+  void couple(const SurfaceContactParameters& parameters);
   // The stable step of the penalty contact with a coupled surface (0: not coupled).
   double surface_contact_limit_dt() const;
   const SurfaceLoads& surface_loads() const { return surface_loads_; }
-  // Wall time spent waiting for the coupled surface and handing back the loads [s].
-  double exchange_wait_s() const { return exchange_wait_s_; }
-  bool stopped() const { return stopped_; }
+  // Exchange n (n = 0 before initialise(), else after the n-th advance()): the
+  // contact of the surface at t_n with the particles at t_n, into their
+  // accelerations and surface_loads(); null: the surface's owner ended the run.
+  void contact_surface(const ContactSurface* surface, std::uint64_t exchange);
   // Impulse of the coupled surface on the particles [N s], over the exchanges
   // whose window the surface's owner completed (it sent the next surface).
   const double* surface_impulse_Ns() const { return surface_impulse_; }
@@ -82,10 +87,15 @@ class Solver {
   // stability_limit_dt() is that of the first step (a coupled terrain proposes
   // its step from it); initialise() calls it if it was not called.
   void prepare();
-  // Makes exchange 0 with a coupled surface and starts the energy balance;
-  // call once before step().
+  // Starts the energy balance (and the active domain, from the surface of
+  // exchange 0); call once before the first step.
   void initialise();
-  // Advances one step of size stable_dt() (or the fixed step).
+  // The stages of one step of size stable_dt() (or the fixed step) up to the
+  // particle forces of the new time, without the coupled surface ...
+  StepStats advance();
+  // ... and its end, after the coupled surface's contact: energies, active domain.
+  void complete_step();
+  // advance() + complete_step(): one step of a terrain on its own.
   StepStats step();
 
   double time() const { return time_; }
@@ -111,8 +121,6 @@ class Solver {
   void update_materials(double dt);
   void compute_forces();
   void compute_contact(double dt);
-  // Exchange n with the coupled surface: contact forces into a, their power into the balance.
-  void exchange_surface(std::uint64_t exchange, double dt);
   void update_energy(double dt);
   // Active domain: which particles are computed and moved next step.
   void update_activity(const ContactSurface* surface);
@@ -138,15 +146,14 @@ class Solver {
   bool any_artificial_stress_ = false;
   bool any_water_ = false;
   EnergyBalance energy_;
-  SurfaceExchange* exchange_ = nullptr;
+  bool coupled_ = false;
+  double step_dt_ = 0.0;  // the step advance() took (complete_step() and the contact use it)
   SurfaceContactParameters surface_params_;
   SurfaceLoads surface_loads_;
   FrictionHistory friction_history_;  // elastic sticks, keyed by the stable particle id
   // Accelerations before the surface contact, then the surface's force per
   // particle [N] (its work over the next kick).
   std::vector<double> a_before_;
-  double exchange_wait_s_ = 0.0;
-  bool stopped_ = false;
   bool prepared_ = false;
   mutable double smallest_limit_dt_ = 1e30;
   double held_load_limit_dt_ = 0.0;

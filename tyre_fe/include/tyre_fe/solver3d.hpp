@@ -4,9 +4,12 @@
 // inner liner, a rigid rim (reference node at the wheel centre, free in x, z and
 // rotation about y, ISO 8855) and a flat rigid road with penalty contact and
 // Coulomb friction. A step is a list of stages over explicit state:
-//   [window start: send surface] -> element forces -> gather -> pressure
-//   -> road contact -> [window start: receive terrain loads] -> terrain loads
-//   -> damping -> rim rigid body -> velocity and position update -> energy.
+//   compute_forces:    element forces -> gather -> pressure -> road contact
+//   add_terrain_loads: the terrain's loads held over the coupling window (coupled)
+//   integrate:         damping -> rim rigid body -> velocity and position update -> energy.
+// A coupled run (tyre_fe/run.cpp) puts its exchange around them at a window's
+// start: send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
+// so that the terrain works on the surface while the element forces are computed.
 #include <cstdint>
 #include <vector>
 
@@ -54,11 +57,11 @@ struct RoadState {
   double friction_dissipation_J = 0.0;
 };
 
-// A terrain solver behind a port (terrain_port.hpp): its loads replace or join the road.
+// The tyre's side of a coupling with a terrain solver: its loads replace or join the road.
 // Multi-rate (docs/coupling.md): one exchange per coupling window of
 // `substeps` tyre steps; the loads of the window's start are held over it.
+// The run makes the exchange through its port (terrain_port.hpp).
 struct TerrainCoupling {
-  TerrainPort* port = nullptr;  // null: no terrain solver
   ContactSurfaceDef surface;
   std::uint64_t exchange = 0;   // windows exchanged
   int substeps = 1;             // tyre steps per coupling window
@@ -89,7 +92,6 @@ struct Energies {
 struct StageTimes {
   double internal_forces_s = 0.0;  // element kernels + gather
   double contact_s = 0.0;          // road contact
-  double exchange_s = 0.0;         // terrain port: send + wait for the loads
   double rest_s = 0.0;             // pressure, damping, rim, update, energies
 };
 
@@ -130,10 +132,18 @@ State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& c
 void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
                 double penalty_scale);
 
-// One explicit step of size s.dt_s. With a terrain port (s.terrain.port), at
-// the start of a coupling window the surface is sent and the terrain's loads
-// received; on every step the loads of the window are added to the nodal forces.
-// Returns false if a value went non-finite.
+// The stages of one explicit step of size s.dt_s (see the top of this file).
+// The nodal forces at t: element forces, gather, inflation pressure, road contact.
+void compute_forces(const Model3d& model, State3d& s);
+// The terrain's loads of the window (s.terrain.loads) into the nodal forces, their
+// impulse booked; moves the window's sub-step count on.
+void add_terrain_loads(State3d& s);
+// At a window's start, when the surface is sent: the impulse of the window
+// just completed counts (the terrain books the same windows).
+void commit_window_impulse(TerrainCoupling& t);
+// Damping, rim, central-difference update, energies. Returns false if a value went non-finite.
+bool integrate(const Model3d& model, State3d& s, const RimDrive& drive);
+// compute_forces + integrate: one step of the tyre on its own (rigid road).
 bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
 
 // Kinetic damping (Cundall 1976; Underwood 1983): sets every velocity (nodes and

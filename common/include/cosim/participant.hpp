@@ -1,0 +1,104 @@
+#pragma once
+// One skeleton for the run of every program (tyre_fe, snow_sph, coupler),
+// after Chrono's co-simulation nodes (Initialize / Synchronize / Advance /
+// Output; Serban et al., "Chrono::Vehicle co-simulation framework", 2019): the
+// skeleton owns what every run needs the same way (summary.json, the CSV
+// series, the progress line, interruption, the failure protocol, the plots);
+// a participant supplies only its physics hooks. In a coupled participant the
+// exchange with its peers is a named stage of its own `advance` (for example
+// send surface -> forces -> receive loads -> update), not a call hidden in a
+// physics kernel.
+//
+// Failure protocol: whatever throws, the CSV rows written so far are flushed,
+// the participant tells its peers (`abort`), the results it can still give are
+// recorded, and summary.json says "status": "failed" with the error; then the
+// error is rethrown as cosim::Error for main() to turn into an exit code.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cosim/outputs.hpp"
+#include "cosim/scene_io.hpp"
+
+namespace cosim {
+
+// What a run keeps on disk: summary.json (written at the end, and on failure)
+// and the CSV series, in one output folder.
+class RunRecord {
+ public:
+  // Creates `out_dir`; the summary starts with the scene, its file, the source
+  // revision, the program, the thread count and the --set overrides.
+  RunRecord(const LoadedScene& loaded, std::string out_dir, const std::string& program);
+
+  const std::string& out_dir() const { return out_dir_; }
+  std::string path(const std::string& file) const { return out_dir_ + "/" + file; }
+  nlohmann::json& summary() { return summary_; }
+  nlohmann::json& results() { return summary_["results"]; }
+  // Wall time since the record was made [s].
+  double wall_s() const;
+
+  // Opens out_dir/file with this header (once per file; the run owns it).
+  CsvWriter& series(const std::string& file, const std::vector<std::string>& columns);
+  bool has_series(const std::string& file) const { return series_.count(file) > 0; }
+  void flush_series();
+  void close_series();  // flushes and closes every series (before plotting them)
+
+  // A PNG plot of CSV columns of a series (cosim::plot_csv), listed under
+  // summary "plots" when drawn; a plot that cannot be drawn never fails a run.
+  void plot(const std::string& csv_file, const std::string& png_file, int x_column,
+            const std::vector<PlotSeries>& series, const std::string& title, const std::string& x_label,
+            const std::string& y_label, const std::string& extra_commands = "");
+  // A coloured map of a CSV (cosim::plot_csv_map), same rules.
+  void plot_map(const std::string& csv_file, const std::string& png_file, int x_column, int y_column,
+                int value_column, const std::string& title, const std::string& x_label, const std::string& y_label,
+                const std::string& value_label);
+
+  // Writes summary.json with the status, wall time, simulated time and steps.
+  void write(const std::string& status, double sim_time_s, std::uint64_t steps);
+
+ private:
+  std::string out_dir_;
+  nlohmann::json summary_;
+  std::map<std::string, std::unique_ptr<CsvWriter>> series_;
+  double start_s_;
+};
+
+// The hooks a program supplies. The skeleton calls, in order:
+//   initialize -> (advance -> output)* -> finalize -> finish_peers -> plots
+// and on any exception: abort -> finalize (best effort) -> plots (best effort).
+class Participant {
+ public:
+  virtual ~Participant() = default;
+  // Builds the model, writes its set-up figures into the record and makes the
+  // first exchange of a coupled run; returns the planned end time [s] for the
+  // progress line (0: nothing to step, as for a tyre's --mesh-only).
+  virtual double initialize(RunRecord& record) = 0;
+  // One step (a coupled participant: with its exchange stages); false when the
+  // run is over (end time reached, a peer ended the run, step limit).
+  virtual bool advance() = 0;
+  virtual double time_s() const = 0;
+  virtual std::uint64_t steps() const = 0;
+  // After every step: CSV rows and frames as their intervals say.
+  virtual void output(RunRecord& record) = 0;
+  // After the last step (and after a failure, best effort): the results and
+  // figures of the run into the record, the last rows and frames.
+  virtual void finalize(RunRecord& record) = 0;
+  // A coupled participant tells its peers the run ended normally.
+  virtual void finish_peers() {}
+  // The run failed: a coupled participant tells its peers why. Never throws.
+  virtual void abort(const std::string& reason) noexcept { (void)reason; }
+  // Pictures of the CSV series (record.plot); called with the series closed.
+  virtual void plots(RunRecord& record) { (void)record; }
+  // Status of a run that ended without error ("completed", "stopped_at_max_steps").
+  virtual std::string end_status() const { return "completed"; }
+};
+
+// Runs a participant under the skeleton; returns the summary (also written to
+// out_dir/summary.json). `label` names the progress line.
+nlohmann::json run_participant(Participant& participant, RunRecord& record, const std::string& label, bool quiet);
+
+}  // namespace cosim
