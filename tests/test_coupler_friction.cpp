@@ -15,10 +15,7 @@ using coupler::TerrainKind;
 
 namespace {
 
-const FacetTag kAllTags[] = {FacetTag::tread_top, FacetTag::groove_wall, FacetTag::groove_bottom,
-                             FacetTag::sipe_wall, FacetTag::shoulder,    FacetTag::sidewall,
-                             FacetTag::inner_liner, FacetTag::rim_contact, FacetTag::other};
-static_assert(std::size(kAllTags) == cosim::transport::kFacetTagCount, "every facet tag is covered");
+const auto& kAllTags = cosim::kAllFacetTags;
 
 // Expects `fn` to throw cosim::Error whose message contains `part`.
 template <class Fn>

@@ -42,7 +42,7 @@ void validate(const FacetLoads& l) {
         throw cosim::Error("force decomposition: facet entry " + std::to_string(i) + " holds a non-finite value");
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (index(l.tag[i]) >= cosim::transport::kFacetTagCount)
+    if (index(l.tag[i]) >= cosim::kFacetTagCount)
       throw cosim::Error("force decomposition: facet entry " + std::to_string(i) + " has an invalid tag");
     if (l.contact_area_m2[i] < 0.0)
       throw cosim::Error("force decomposition: facet entry " + std::to_string(i) + " has a negative contact area");

@@ -12,9 +12,6 @@ namespace coupler {
 
 namespace {
 
-constexpr FacetTag kTags[] = {FacetTag::tread_top, FacetTag::groove_wall, FacetTag::groove_bottom,
-                              FacetTag::sipe_wall, FacetTag::shoulder,    FacetTag::sidewall,
-                              FacetTag::inner_liner, FacetTag::rim_contact, FacetTag::other};
 constexpr TerrainKind kTerrains[] = {TerrainKind::snow_soft, TerrainKind::snow_hard, TerrainKind::water,
                                      TerrainKind::rigid_road};
 
@@ -44,25 +41,6 @@ void check_mu(double mu, const std::string& what) {
 bool is_snow(TerrainKind t) { return t == TerrainKind::snow_soft || t == TerrainKind::snow_hard; }
 
 }  // namespace
-
-const char* facet_tag_name(FacetTag tag) {
-  switch (tag) {
-    case FacetTag::tread_top: return "tread_top";
-    case FacetTag::groove_wall: return "groove_wall";
-    case FacetTag::groove_bottom: return "groove_bottom";
-    case FacetTag::sipe_wall: return "sipe_wall";
-    case FacetTag::shoulder: return "shoulder";
-    case FacetTag::sidewall: return "sidewall";
-    case FacetTag::inner_liner: return "inner_liner";
-    case FacetTag::rim_contact: return "rim_contact";
-    case FacetTag::other: return "other";
-  }
-  return "unknown";
-}
-
-FacetTag facet_tag_from_name(const std::string& name) {
-  return from_name(name, kTags, facet_tag_name, "facet tag");
-}
 
 const char* terrain_kind_name(TerrainKind kind) {
   switch (kind) {

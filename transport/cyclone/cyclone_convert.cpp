@@ -20,9 +20,17 @@ COSIM_SAME_FIELDS(WheelState);
 COSIM_SAME_FIELDS(ForceSummary);
 COSIM_SAME_FIELDS(RunControl);
 #undef COSIM_SAME_FIELDS
-static_assert(cosim_wire_TAG_OTHER == static_cast<int>(FacetTag::other) &&
-              cosim_wire_TAG_RIM_CONTACT == static_cast<int>(FacetTag::rim_contact) &&
-              kFacetTagCount == cosim_wire_TAG_OTHER + 1);
+// Every facet tag (cosim/facet_tag.hpp) has the IDL's value.
+static_assert(cosim_wire_TAG_TREAD_TOP == static_cast<int>(FacetTag::tread_top));
+static_assert(cosim_wire_TAG_GROOVE_WALL == static_cast<int>(FacetTag::groove_wall));
+static_assert(cosim_wire_TAG_GROOVE_BOTTOM == static_cast<int>(FacetTag::groove_bottom));
+static_assert(cosim_wire_TAG_SIPE_WALL == static_cast<int>(FacetTag::sipe_wall));
+static_assert(cosim_wire_TAG_SHOULDER == static_cast<int>(FacetTag::shoulder));
+static_assert(cosim_wire_TAG_SIDEWALL == static_cast<int>(FacetTag::sidewall));
+static_assert(cosim_wire_TAG_INNER_LINER == static_cast<int>(FacetTag::inner_liner));
+static_assert(cosim_wire_TAG_RIM_CONTACT == static_cast<int>(FacetTag::rim_contact));
+static_assert(cosim_wire_TAG_OTHER == static_cast<int>(FacetTag::other));
+static_assert(kFacetTagCount == cosim_wire_TAG_OTHER + 1);
 static_assert(cosim_wire_ROLE_MONITOR == static_cast<int>(Role::monitor) && kRoleCount == cosim_wire_ROLE_MONITOR + 1);
 static_assert(cosim_wire_CONTROL_FAILURE == static_cast<int>(ControlKind::failure) &&
               kControlKindCount == cosim_wire_CONTROL_FAILURE + 1);

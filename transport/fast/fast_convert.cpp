@@ -6,10 +6,17 @@
 namespace cosim::transport::fast {
 
 // The enumerations keep the IDL's numbering; the last enumerator pins the count.
-static_assert(static_cast<int>(cosim_wire::TAG_OTHER) == static_cast<int>(FacetTag::other) &&
-              static_cast<int>(cosim_wire::TAG_RIM_CONTACT) == static_cast<int>(FacetTag::rim_contact) &&
-              static_cast<int>(cosim_wire::TAG_TREAD_TOP) == static_cast<int>(FacetTag::tread_top) &&
-              kFacetTagCount == cosim_wire::TAG_OTHER + 1);
+// Every facet tag (cosim/facet_tag.hpp) has the IDL's value.
+static_assert(static_cast<int>(cosim_wire::TAG_TREAD_TOP) == static_cast<int>(FacetTag::tread_top));
+static_assert(static_cast<int>(cosim_wire::TAG_GROOVE_WALL) == static_cast<int>(FacetTag::groove_wall));
+static_assert(static_cast<int>(cosim_wire::TAG_GROOVE_BOTTOM) == static_cast<int>(FacetTag::groove_bottom));
+static_assert(static_cast<int>(cosim_wire::TAG_SIPE_WALL) == static_cast<int>(FacetTag::sipe_wall));
+static_assert(static_cast<int>(cosim_wire::TAG_SHOULDER) == static_cast<int>(FacetTag::shoulder));
+static_assert(static_cast<int>(cosim_wire::TAG_SIDEWALL) == static_cast<int>(FacetTag::sidewall));
+static_assert(static_cast<int>(cosim_wire::TAG_INNER_LINER) == static_cast<int>(FacetTag::inner_liner));
+static_assert(static_cast<int>(cosim_wire::TAG_RIM_CONTACT) == static_cast<int>(FacetTag::rim_contact));
+static_assert(static_cast<int>(cosim_wire::TAG_OTHER) == static_cast<int>(FacetTag::other));
+static_assert(kFacetTagCount == cosim_wire::TAG_OTHER + 1);
 static_assert(static_cast<int>(cosim_wire::ROLE_MONITOR) == static_cast<int>(Role::monitor) &&
               kRoleCount == cosim_wire::ROLE_MONITOR + 1);
 static_assert(static_cast<int>(cosim_wire::CONTROL_FAILURE) == static_cast<int>(ControlKind::failure) &&

@@ -21,7 +21,7 @@ double DdsTerrainPort::connect(const ContactSurfaceDef& surface, double proposed
   mesh.header = {session_.run_id(), 0, 0.0};
   for (int n : surface.node_ids) mesh.node_ids.push_back(static_cast<std::uint32_t>(n));
   mesh.facet_nodes = surface.facet_nodes;
-  for (SurfaceTag t : surface.facet_tags) mesh.facet_tags.push_back(static_cast<tp::FacetTag>(t));
+  mesh.facet_tags.assign(surface.facet_tags.begin(), surface.facet_tags.end());
   mesh.node_mass_kg = surface.node_mass_kg;
   mesh_ = std::move(mesh);  // positions are added by the first send()
   const tp::HandshakeResult joined =

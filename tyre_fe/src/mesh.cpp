@@ -40,23 +40,6 @@ Region region_from_name(const std::string& name) {
                      "filler or rim_strip)");
 }
 
-// The canonical lower-case name of a surface tag (VTK output, coupler configs).
-const char* surface_tag_name(SurfaceTag t) {
-  switch (t) {
-    case SurfaceTag::tread_top: return "tread_top";
-    case SurfaceTag::groove_wall: return "groove_wall";
-    case SurfaceTag::groove_bottom: return "groove_bottom";
-    case SurfaceTag::sipe_wall: return "sipe_wall";
-    case SurfaceTag::shoulder: return "shoulder";
-    case SurfaceTag::sidewall: return "sidewall";
-    case SurfaceTag::inner_liner: return "inner_liner";
-    case SurfaceTag::rim_contact: return "rim_contact";
-    case SurfaceTag::other: return "other";
-    case SurfaceTag::count: break;
-  }
-  return "unknown";
-}
-
 void tie_region_to_rim(CrossSection& section, Region region) {
   std::vector<int>& rim = section.rim_nodes;
   for (std::size_t q = 0; q < section.quads.size(); ++q)

@@ -152,8 +152,8 @@ double TyreRun::initialize(cosim::RunRecord& record) {
   Mesh3D mesh = revolve(section, setup.pattern);
   summary["cross_section"] = {{"nodes", section.nodes.size()}, {"elements", section.quads.size()}};
   nlohmann::json tags = nlohmann::json::object();
-  for (int k = 0; k < kSurfaceTagCount; ++k) tags[surface_tag_name(static_cast<SurfaceTag>(k))] = 0;
-  for (const auto& f : mesh.facets) tags[surface_tag_name(f.tag)] = tags[surface_tag_name(f.tag)].get<int>() + 1;
+  for (int k = 0; k < kSurfaceTagCount; ++k) tags[cosim::facet_tag_name(static_cast<SurfaceTag>(k))] = 0;
+  for (const auto& f : mesh.facets) tags[cosim::facet_tag_name(f.tag)] = tags[cosim::facet_tag_name(f.tag)].get<int>() + 1;
   results["nodes"] = mesh.nodes.size();
   results["elements"] = mesh.hexes.size();
   results["facets"] = mesh.facets.size();

@@ -43,7 +43,7 @@ enum class SinkageMeasure {
   rim_drop,       // reference rim height minus rim height (Figures 5.5, 5.6, 6.13)
 };
 
-using TagSet = std::array<bool, cosim::transport::kFacetTagCount>;  // indexed by FacetTag
+using TagSet = std::array<bool, cosim::kFacetTagCount>;  // indexed by FacetTag
 // groove_wall and sipe_wall: the walls that hold the snow in the pattern (2.1.2).
 TagSet default_groove_tags();
 

@@ -16,11 +16,14 @@
 #include <string>
 #include <vector>
 
-#include "cosim_transport/topics.hpp"
+#include "cosim/facet_tag.hpp"
 
 namespace coupler {
 
-using FacetTag = cosim::transport::FacetTag;
+// The project's one facet-tag enum and its names (cosim/facet_tag.hpp).
+using cosim::FacetTag;
+using cosim::facet_tag_from_name;
+using cosim::facet_tag_name;
 
 // What the tyre runs on (thesis 3.1/6.2 soft snow, 6.3 hard snow, 4.2 water, 5.2.3 road).
 enum class TerrainKind { snow_soft, snow_hard, water, rigid_road };
@@ -32,10 +35,6 @@ struct FrictionRules {
   std::map<FacetTag, double> tag_mu;  // per-tag overrides (rule 2)
 };
 
-// "tread_top", "groove_wall", ... (the IDL enum without its TAG_ prefix, lower case).
-const char* facet_tag_name(FacetTag tag);
-// Throws cosim::Error naming the known tags (and the closest one) for an unknown name.
-FacetTag facet_tag_from_name(const std::string& name);
 // "snow_soft", "snow_hard", "water", "rigid_road".
 const char* terrain_kind_name(TerrainKind kind);
 TerrainKind terrain_kind_from_name(const std::string& name);

@@ -10,21 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "cosim/facet_tag.hpp"
+
 namespace cosim::transport {
 
-// Facet regions (tyre_fe::SurfaceTag without its `count`).
-enum class FacetTag : std::uint8_t {
-  tread_top,
-  groove_wall,
-  groove_bottom,
-  sipe_wall,
-  shoulder,
-  sidewall,
-  inner_liner,
-  rim_contact,
-  other,
-};
-constexpr int kFacetTagCount = 9;
+// Facet regions: the project's one facet-tag enum (cosim/facet_tag.hpp).
+using FacetTag = cosim::FacetTag;
+using cosim::kFacetTagCount;
 
 // Participant roles; `any` addresses everybody.
 enum class Role : std::uint8_t { any, tyre, terrain, coupler, monitor };

@@ -13,6 +13,8 @@
 
 #include <Eigen/Core>
 
+#include "cosim/facet_tag.hpp"
+
 namespace tyre_fe {
 
 // Tyre regions of thesis figure 5.3 / Table 5.4; one material each.
@@ -34,21 +36,10 @@ const char* region_name(Region r);
 // Throws cosim::Error for an unknown name.
 Region region_from_name(const std::string& name);
 
-// Tags of 3D boundary facets; the coupler chooses friction by tag.
-enum class SurfaceTag : std::uint8_t {
-  tread_top,      // ground-contacting top of the tread (ribs, blocks, smooth cap)
-  groove_wall,    // side walls of circumferential and lateral grooves
-  groove_bottom,  // floor of the grooves
-  sipe_wall,      // the two faces of each sipe (slit)
-  shoulder,       // outer surface of the tread beyond the tread width
-  sidewall,       // outer surface of the sidewall
-  inner_liner,    // inside of the tyre: carries the inflation pressure
-  rim_contact,    // bead seat / rim strip faces held by the rim
-  other,
-  count
-};
-constexpr int kSurfaceTagCount = static_cast<int>(SurfaceTag::count);
-const char* surface_tag_name(SurfaceTag t);
+// Tags of 3D boundary facets: the project's one facet-tag enum
+// (cosim/facet_tag.hpp), which the wire carries and the coupler chooses friction by.
+using SurfaceTag = cosim::FacetTag;
+constexpr int kSurfaceTagCount = cosim::kFacetTagCount;
 
 // A rebar layer smeared into the host elements of one region (Abaqus *REBAR LAYER):
 // bars of cross-section `area_m2` every `spacing_m`, at `angle_rad` measured in the
