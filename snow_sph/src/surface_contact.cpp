@@ -9,6 +9,7 @@
 
 #include "cosim/error.hpp"
 #include "cosim/parallel.hpp"
+#include "cosim/penalty_contact.hpp"
 
 namespace snow_sph {
 namespace {
@@ -273,9 +274,10 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       // is pushed back with the force of a radius's penetration: no larger
       // impulse reaches the light tread nodes of a sipe-cut block.
       delta = std::min(delta, radius);
-      const double c_d = 2.0 * params.damping_ratio * std::sqrt(k * m);
-      const double damping = vn < 0.0 ? -c_d * vn : 0.0;
-      const double fn = std::max(0.0, k * delta + damping);
+      const double c_d = cosim::penalty::damping_coefficient(params.damping_ratio, k, m);
+      const cosim::penalty::NormalForce normal =
+          cosim::penalty::normal_force(k, delta, vn, c_d, cosim::penalty::Damping::approach_only);
+      const double fn = normal.force_N;
       const V3 vt_vec = rel - vn * n;
       const double vt = vt_vec.norm();
       const std::uint32_t fid = s.facet_id.empty() ? static_cast<std::uint32_t>(f) : s.facet_id[f];
@@ -316,19 +318,20 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       V3 ft = V3::Zero();
       double friction_J = 0.0;
       const double spring_norm = spring.norm();
+      const cosim::penalty::CoulombCap cone = cosim::penalty::coulomb_cap(spring_norm, cap);
       if (cap <= 0.0 || kt <= 0.0) {
         spring = V3::Zero();
-      } else if (spring_norm >= cap) {
+      } else if (cone.sliding) {
         // Sliding: the spring stays at the cap; the excess is slip, mu fn times its length dissipated.
-        friction_J = cap * (spring_norm - cap) / kt;
-        spring *= cap / spring_norm;
+        friction_J = cosim::penalty::slip_dissipation(spring_norm, cap, kt);
+        spring *= cone.scale;
         ft = spring;
       } else {
         // Sticking: spring plus damper, the sum held within the cone.
-        const double c_t = 2.0 * params.damping_ratio * std::sqrt(kt * m);
+        const double c_t = cosim::penalty::damping_coefficient(params.damping_ratio, kt, m);
         ft = spring - c_t * vt_vec;
-        const double ft_norm = ft.norm();
-        if (ft_norm > cap) ft *= cap / ft_norm;
+        const cosim::penalty::CoulombCap damped = cosim::penalty::coulomb_cap(ft.norm(), cap);
+        if (damped.sliding) ft *= damped.scale;
         friction_J = std::max(0.0, -(ft - spring).dot(vt_vec)) * dt;
       }
       const double ft_mag = ft.norm();
@@ -340,7 +343,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       for (int a = 0; a < 3; ++a) ct.f[a] = force[a], ct.ft[a] = ft[a], ct.normal[a] = n[a], ct.spring[a] = spring[a];
       ct.fn = fn;
       ct.friction_J = friction_J;
-      ct.damping_J = std::min(damping, fn) * std::max(-vn, 0.0) * dt;
+      ct.damping_J = cosim::penalty::approach_damping_power(normal, vn) * dt;
       ct.elastic_J = 0.5 * k * delta * delta + (ft_mag > 0.0 ? 0.5 * spring.squaredNorm() / kt : 0.0);
     };
     // Face contacts: every facet whose plane the particle penetrates with its
