@@ -10,6 +10,7 @@
 #include "cosim/error.hpp"
 #include "cosim/parallel.hpp"
 #include "cosim/penalty_contact.hpp"
+#include "cosim/quad_facet.hpp"
 
 namespace snow_sph {
 namespace {
@@ -168,12 +169,12 @@ bool inside_triangle(const V3& q, const V3& a, const V3& b, const V3& c, double 
   return w[0] >= 0 && v >= 0 && t >= 0;
 }
 
-// Facet f's area vector (x2 - x0) x (x3 - x1) / 2: its length is the area, exact
+// Facet f's area vector (cosim::quad_area_vector): its length is the area, exact
 // for a planar quad, and it points along the outward normal.
 V3 facet_area_vector(const ContactSurface& s, std::size_t f) {
   const std::uint32_t* q = &s.facet_nodes[4 * f];
   auto node = [&](std::uint32_t n) { return V3(s.x[n], s.y[n], s.z[n]); };
-  return 0.5 * (node(q[2]) - node(q[0])).cross(node(q[3]) - node(q[1]));
+  return cosim::quad_area_vector(node(q[0]), node(q[1]), node(q[2]), node(q[3]));
 }
 
 }  // namespace
@@ -231,7 +232,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
   for (std::size_t f = 0; f < nf; ++f) {
     const V3 a = facet_area_vector(s, f);
     area[f] = a.norm();
-    normal[f] = area[f] > 0 ? V3(a / area[f]) : V3::Zero();
+    normal[f] = cosim::unit_normal(a);
   }
   const FacetGrid grid = bin_facets(s, reach);
 
@@ -366,7 +367,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       const std::uint32_t* q = &s.facet_nodes[4 * f];
       const V3 a = node(q[0]), b = node(q[1]), cc = node(q[2]), d = node(q[3]);
       const V3& n = normal[f];
-      const double gap = (p - (a + b + cc + d) * 0.25).dot(n);
+      const double gap = (p - cosim::quad_centroid(a, b, cc, d)).dot(n);
       if (gap < radius && gap > -depth) {
         const V3 proj = p - gap * n;
         double w3[3];

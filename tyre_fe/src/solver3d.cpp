@@ -9,6 +9,7 @@
 
 #include "cosim/parallel.hpp"
 #include "cosim/penalty_contact.hpp"
+#include "cosim/quad_facet.hpp"
 
 namespace tyre_fe {
 
@@ -144,7 +145,7 @@ void pressure_forces(const Model3d& m, State3d& s) {
     const auto& n = m.mesh.facets[fi].nodes;
     const Eigen::Vector3d d1(s.x[n[2]] - s.x[n[0]], s.y[n[2]] - s.y[n[0]], s.z[n[2]] - s.z[n[0]]);
     const Eigen::Vector3d d2(s.x[n[3]] - s.x[n[1]], s.y[n[3]] - s.y[n[1]], s.z[n[3]] - s.z[n[1]]);
-    const Eigen::Vector3d f = -0.125 * s.pressure_Pa * d1.cross(d2);  // -p A / 4 per node
+    const Eigen::Vector3d f = -0.25 * s.pressure_Pa * cosim::quad_area_vector_from_diagonals(d1, d2);  // -p A / 4 per node
     for (int a : n) {
       s.fx[a] += f.x(), s.fy[a] += f.y(), s.fz[a] += f.z();
       s.pressure_fx[a] += f.x(), s.pressure_fy[a] += f.y(), s.pressure_fz[a] += f.z();
