@@ -9,6 +9,7 @@
 #include "cosim/error.hpp"
 #include "cosim/parallel.hpp"
 #include "cosim/penalty_contact.hpp"
+#include "cosim/ramp.hpp"
 #include "snow_sph/boundaries.hpp"
 
 namespace snow_sph {
@@ -20,10 +21,7 @@ double EnergyBalance::relative_error() const {
 }
 
 double RigidBody::applied_force_z_now(double t) const {
-  if (ramp_time <= 0.0 || t >= ramp_time) return applied_force_z_full;
-  // Smooth step (zero slope at both ends), as Abaqus's SMOOTH STEP amplitude.
-  const double s = t / ramp_time;
-  return applied_force_z_full * s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+  return cosim::ramp(cosim::RampCurve::smootherstep, t, ramp_time, applied_force_z_full);
 }
 
 Solver::Solver(Model& model) : m_(model) {}
