@@ -5,10 +5,7 @@
 // The tyre side runs here; the terrain side is a cosim_transport_probe process
 // (pong) started beside it, so every step crosses processes. Prints, per pair,
 // the median and 99th percentile of the write-to-loads time (microseconds).
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
+#include <csignal>
 
 #include <algorithm>
 #include <cstdio>
@@ -21,25 +18,9 @@
 #include "cosim/process.hpp"
 #include "probe.hpp"
 
-extern char** environ;
-
 namespace {
 
 using namespace cosim::transport;
-
-pid_t spawn(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t files;  // the pong's own summary line is not wanted here
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&files);
-  if (rc != 0) throw cosim::Error("cannot start " + args[0]);
-  return pid;
-}
 
 }  // namespace
 
@@ -71,22 +52,22 @@ int main(int argc, char** argv) {
         o.vendor = ping;
         o.run_id = new_run_id();
         o.transport.domain_id = domain++;
-        const pid_t child =
-            spawn({probe_exe, "--dds", vendor_name(pong), "--role", "pong", "--domain",
-                   std::to_string(o.transport.domain_id), "--run-id", std::to_string(o.run_id), "--nodes",
-                   std::to_string(o.nodes), "--steps", std::to_string(o.steps), "--warmup",
-                   std::to_string(o.warmup_steps), "--no-check"});
+        // The pong's own summary line is not wanted here.
+        const pid_t child = cosim::start_child(
+            probe_exe,
+            {"--dds", vendor_name(pong), "--role", "pong", "--domain", std::to_string(o.transport.domain_id),
+             "--run-id", std::to_string(o.run_id), "--nodes", std::to_string(o.nodes), "--steps",
+             std::to_string(o.steps), "--warmup", std::to_string(o.warmup_steps), "--no-check"},
+            {"/dev/null", ""});
         probe::ProbeResult r;
         try {
           r = probe::run_ping(o);
         } catch (...) {
           kill(child, SIGTERM);
-          waitpid(child, nullptr, 0);
+          cosim::wait_child(child);
           throw;
         }
-        int status = 0;
-        waitpid(child, &status, 0);
-        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw cosim::Error("the pong process failed");
+        if (cosim::wait_child(child) != 0) throw cosim::Error("the pong process failed");
         const std::string pair = std::string(vendor_name(ping)) + " -> " + vendor_name(pong);
         std::printf("%-18s %10zu %10zu %11.1f %11.1f %11.1f\n", pair.c_str(), r.kinematics_bytes, r.loads_bytes,
                     probe::percentile(r.step_us, 0.5), probe::percentile(r.step_us, 0.99),

@@ -3,22 +3,17 @@
 // exchange the durable mesh and 200 lock-step steps with content checked.
 #include <gtest/gtest.h>
 
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <fcntl.h>
-#include <unistd.h>
-
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
-#include <thread>
 
+#include "cosim/error.hpp"
+#include "cosim/process.hpp"
 #include "cosim_transport/transport.hpp"
 #include "test_paths.hpp"
 #include "transport_test_support.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -42,16 +37,11 @@ struct Child {
 Child start(const std::vector<std::string>& args, const std::string& log) {
   Child c;
   c.log = log;
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&files, 1, 2);
-  const int rc = posix_spawn(&c.pid, argv[0], &files, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&files);
-  if (rc != 0) c.pid = -1;
+  try {
+    c.pid = cosim::start_child(args.front(), {args.begin() + 1, args.end()}, {log, log});
+  } catch (const cosim::Error&) {
+    c.pid = -1;
+  }
   return c;
 }
 
@@ -60,16 +50,8 @@ void wait_all(std::vector<Child*> children, std::chrono::seconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   for (Child* c : children) {
     if (c->pid <= 0) continue;
-    int status = 0;
-    while (waitpid(c->pid, &status, WNOHANG) == 0) {
-      if (std::chrono::steady_clock::now() > deadline) {
-        kill(c->pid, SIGKILL);
-        waitpid(c->pid, &status, 0);
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    c->status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    c->status = cosim::wait_child_for(c->pid, std::max(left, 0.0));
   }
 }
 

@@ -1,53 +1,21 @@
 #include "cosim/process.hpp"
 
 #include <cerrno>
-#include <cstring>
 #include <csignal>
+#include <cstring>
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "cosim/error.hpp"
-
 #include <chrono>
 #include <thread>
+
+#include "cosim/error.hpp"
 
 extern char** environ;
 
 namespace cosim {
-
-std::string executable_folder() {
-  char buffer[4096];
-  const ssize_t n = readlink("/proc/self/exe", buffer, sizeof buffer - 1);
-  if (n <= 0) throw Error("cannot find the running executable: " + std::string(std::strerror(errno)));
-  std::string path(buffer, static_cast<std::size_t>(n));
-  return path.substr(0, path.find_last_of('/'));
-}
-
-int run_child(const std::string& program, const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(program.c_str()));
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid;
-  const int rc = posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ);
-  if (rc != 0) throw Error("cannot start " + program + ": " + std::strerror(rc));
-  // The child gets Ctrl-C / SIGTERM itself (same process group) and stops
-  // cleanly; the launcher waits for it to report instead of dying first.
-  struct sigaction ignore {}, old_int {}, old_term {};
-  ignore.sa_handler = SIG_IGN;
-  sigaction(SIGINT, &ignore, &old_int);
-  sigaction(SIGTERM, &ignore, &old_term);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw Error("waiting for " + program + ": " + std::strerror(errno));
-  }
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
-  return 1;
-}
 
 namespace {
 
@@ -57,32 +25,107 @@ int exit_code_of(int status) {
   return 1;
 }
 
+// While children run, Ctrl-C and SIGTERM reach them too (same process group)
+// and they stop cleanly; the parent ignores both and waits for them to report
+// instead of dying first. Restores the old handlers when it goes.
+class IgnoreInterrupts {
+ public:
+  IgnoreInterrupts() {
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigaction(SIGINT, &ignore, &old_int_);
+    sigaction(SIGTERM, &ignore, &old_term_);
+  }
+  ~IgnoreInterrupts() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  IgnoreInterrupts(const IgnoreInterrupts&) = delete;
+  IgnoreInterrupts& operator=(const IgnoreInterrupts&) = delete;
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
 }  // namespace
+
+std::string executable_folder() {
+  char buffer[4096];
+  const ssize_t n = readlink("/proc/self/exe", buffer, sizeof buffer - 1);
+  if (n <= 0) throw Error("cannot find the running executable: " + std::string(std::strerror(errno)));
+  std::string path(buffer, static_cast<std::size_t>(n));
+  return path.substr(0, path.find_last_of('/'));
+}
+
+pid_t start_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output) {
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(program.c_str()));
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  constexpr int kFlags = O_WRONLY | O_CREAT | O_TRUNC;
+  if (!output.stdout_path.empty())
+    posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, output.stdout_path.c_str(), kFlags, 0644);
+  if (!output.stderr_path.empty()) {
+    if (output.stderr_path == output.stdout_path)
+      posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
+    else
+      posix_spawn_file_actions_addopen(&files, STDERR_FILENO, output.stderr_path.c_str(), kFlags, 0644);
+  }
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, program.c_str(), &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (rc != 0) throw Error("cannot start " + program + ": " + std::strerror(rc));
+  return pid;
+}
+
+int wait_child(pid_t pid) {
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
+  }
+  return exit_code_of(status);
+}
+
+int wait_child_for(pid_t pid, double timeout_s) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
+  int status = 0;
+  while (true) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) return exit_code_of(status);
+    if (r < 0 && errno != EINTR)
+      throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
+    if (Clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      return wait_child(pid);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+int run_child(const std::string& program, const std::vector<std::string>& args) {
+  const pid_t pid = start_child(program, args);
+  const IgnoreInterrupts ignore;
+  return wait_child(pid);
+}
 
 std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, double grace_s) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   std::vector<pid_t> pids(children.size(), -1);
   std::vector<ChildResult> results(children.size());
-  // As in run_child: the children get Ctrl-C themselves and stop cleanly.
-  struct sigaction ignore {}, old_int {}, old_term {};
-  ignore.sa_handler = SIG_IGN;
-  sigaction(SIGINT, &ignore, &old_int);
-  sigaction(SIGTERM, &ignore, &old_term);
+  const IgnoreInterrupts ignore;
   std::size_t running = 0;
   for (std::size_t c = 0; c < children.size(); ++c) {
     results[c].name = children[c].name;
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(children[c].program.c_str()));
-    for (const auto& a : children[c].args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    const int rc = posix_spawn(&pids[c], children[c].program.c_str(), nullptr, nullptr, argv.data(), environ);
-    if (rc != 0) {
+    try {
+      pids[c] = start_child(children[c].program, children[c].args);
+    } catch (const Error&) {
       for (std::size_t k = 0; k < c; ++k) kill(pids[k], SIGTERM);
       for (std::size_t k = 0; k < c; ++k) waitpid(pids[k], nullptr, 0);
-      sigaction(SIGINT, &old_int, nullptr);
-      sigaction(SIGTERM, &old_term, nullptr);
-      throw Error("cannot start " + children[c].program + ": " + std::strerror(rc));
+      throw;
     }
     ++running;
   }
@@ -110,8 +153,6 @@ std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, do
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
   return results;
 }
 

@@ -2,10 +2,10 @@
 #include "coupler/facet_geometry.hpp"
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <string>
 
 #include "cosim/error.hpp"
+#include "cosim/quad_facet.hpp"
 
 namespace coupler {
 
@@ -30,13 +30,11 @@ FacetGeometry quad_facet_geometry(const std::vector<double>& x_m, const std::vec
                            " of " + std::to_string(n_nodes));
       p[k] = {x_m[i], y_m[i], z_m[i]};
     }
-    const Eigen::Vector3d c = 0.25 * (p[0] + p[1] + p[2] + p[3]);
-    const Eigen::Vector3d a = 0.5 * (p[2] - p[0]).cross(p[3] - p[1]);
-    const double area = a.norm();
-    if (!(area > 0.0)) throw cosim::Error("facet geometry: facet " + std::to_string(f) + " has zero area");
-    g.centroid_x_m[f] = c.x(), g.centroid_y_m[f] = c.y(), g.centroid_z_m[f] = c.z();
-    g.normal_x[f] = a.x() / area, g.normal_y[f] = a.y() / area, g.normal_z[f] = a.z() / area;
-    g.area_m2[f] = area;
+    const cosim::QuadFacet q = cosim::quad_facet(p[0], p[1], p[2], p[3]);
+    if (!(q.area > 0.0)) throw cosim::Error("facet geometry: facet " + std::to_string(f) + " has zero area");
+    g.centroid_x_m[f] = q.centroid.x(), g.centroid_y_m[f] = q.centroid.y(), g.centroid_z_m[f] = q.centroid.z();
+    g.normal_x[f] = q.normal.x(), g.normal_y[f] = q.normal.y(), g.normal_z[f] = q.normal.z();
+    g.area_m2[f] = q.area;
   }
   return g;
 }

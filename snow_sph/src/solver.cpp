@@ -8,6 +8,8 @@
 
 #include "cosim/error.hpp"
 #include "cosim/parallel.hpp"
+#include "cosim/penalty_contact.hpp"
+#include "cosim/ramp.hpp"
 #include "snow_sph/boundaries.hpp"
 
 namespace snow_sph {
@@ -19,10 +21,7 @@ double EnergyBalance::relative_error() const {
 }
 
 double RigidBody::applied_force_z_now(double t) const {
-  if (ramp_time <= 0.0 || t >= ramp_time) return applied_force_z_full;
-  // Smooth step (zero slope at both ends), as Abaqus's SMOOTH STEP amplitude.
-  const double s = t / ramp_time;
-  return applied_force_z_full * s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+  return cosim::ramp(cosim::RampCurve::smootherstep, t, ramp_time, applied_force_z_full);
 }
 
 Solver::Solver(Model& model) : m_(model) {}
@@ -441,6 +440,10 @@ void Solver::compute_forces_t() {
   });
 }
 
+// The rigid bodies' normal damper: a fraction of critical, approaching and
+// separating (cosim::penalty::Damping::both_ways).
+constexpr double kBodyContactDampingRatio = 0.2;
+
 // Penalty contact of particles (spheres of radius dx/2) with rigid
 // cylinders, Coulomb friction regularised so that sticking stops the relative
 // sliding within one step.
@@ -467,19 +470,20 @@ void Solver::compute_contact(double dt) {
       const double m = p.mass[i];
       const double wx = p.vx[i], wy = p.vy[i], wz = p.vz[i] - b.vz;  // relative velocity
       const double vn = wx * nx + wy * ny + wz * nz;
-      const double damping = 2.0 * 0.2 * std::sqrt(k_n * m);  // 20 % of critical
-      const double fn = std::max(0.0, k_n * depth - damping * vn);
+      const double damping = cosim::penalty::damping_coefficient(kBodyContactDampingRatio, k_n, m);
+      const cosim::penalty::NormalForce normal =
+          cosim::penalty::normal_force(k_n, depth, vn, damping, cosim::penalty::Damping::both_ways);
+      const double fn = normal.force_N;
       const double tx = wx - vn * nx, ty = wy - vn * ny, tz = wz - vn * nz;
       const double vt = std::sqrt(tx * tx + ty * ty + tz * tz);
       double ft = 0.0;
-      if (vt > 0.0) ft = std::min(b.friction * fn, m * vt / dt);
+      if (vt > 0.0) ft = cosim::penalty::velocity_stop_friction(b.friction * fn, m, vt, dt);
       const double fx = fn * nx - (vt > 0 ? ft * tx / vt : 0.0);
       const double fy = fn * ny - (vt > 0 ? ft * ty / vt : 0.0);
       const double fz = fn * nz - (vt > 0 ? ft * tz / vt : 0.0);
       p.ax[i] += fx / m, p.ay[i] += fy / m, p.az[i] += fz / m;
       contact_fx_[i] = fx, contact_fy_[i] = fy, contact_fz_[i] = fz;
-      const double damping_force = std::min(damping * std::max(-vn, 0.0), fn);
-      contact_dissipation_[i] = (ft * vt + damping_force * std::max(-vn, 0.0)) * dt;
+      contact_dissipation_[i] = (ft * vt + cosim::penalty::approach_damping_power(normal, vn)) * dt;
     });
     double fx = 0, fy = 0, fz = 0, dissipated = 0;
     for (std::size_t i = 0; i < p.n_real; ++i) {

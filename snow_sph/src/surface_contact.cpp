@@ -9,6 +9,8 @@
 
 #include "cosim/error.hpp"
 #include "cosim/parallel.hpp"
+#include "cosim/penalty_contact.hpp"
+#include "cosim/quad_facet.hpp"
 
 namespace snow_sph {
 namespace {
@@ -167,12 +169,12 @@ bool inside_triangle(const V3& q, const V3& a, const V3& b, const V3& c, double 
   return w[0] >= 0 && v >= 0 && t >= 0;
 }
 
-// Facet f's area vector (x2 - x0) x (x3 - x1) / 2: its length is the area, exact
+// Facet f's area vector (cosim::quad_area_vector): its length is the area, exact
 // for a planar quad, and it points along the outward normal.
 V3 facet_area_vector(const ContactSurface& s, std::size_t f) {
   const std::uint32_t* q = &s.facet_nodes[4 * f];
   auto node = [&](std::uint32_t n) { return V3(s.x[n], s.y[n], s.z[n]); };
-  return 0.5 * (node(q[2]) - node(q[0])).cross(node(q[3]) - node(q[1]));
+  return cosim::quad_area_vector(node(q[0]), node(q[1]), node(q[2]), node(q[3]));
 }
 
 }  // namespace
@@ -230,7 +232,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
   for (std::size_t f = 0; f < nf; ++f) {
     const V3 a = facet_area_vector(s, f);
     area[f] = a.norm();
-    normal[f] = area[f] > 0 ? V3(a / area[f]) : V3::Zero();
+    normal[f] = cosim::unit_normal(a);
   }
   const FacetGrid grid = bin_facets(s, reach);
 
@@ -273,9 +275,10 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       // is pushed back with the force of a radius's penetration: no larger
       // impulse reaches the light tread nodes of a sipe-cut block.
       delta = std::min(delta, radius);
-      const double c_d = 2.0 * params.damping_ratio * std::sqrt(k * m);
-      const double damping = vn < 0.0 ? -c_d * vn : 0.0;
-      const double fn = std::max(0.0, k * delta + damping);
+      const double c_d = cosim::penalty::damping_coefficient(params.damping_ratio, k, m);
+      const cosim::penalty::NormalForce normal =
+          cosim::penalty::normal_force(k, delta, vn, c_d, cosim::penalty::Damping::approach_only);
+      const double fn = normal.force_N;
       const V3 vt_vec = rel - vn * n;
       const double vt = vt_vec.norm();
       const std::uint32_t fid = s.facet_id.empty() ? static_cast<std::uint32_t>(f) : s.facet_id[f];
@@ -316,19 +319,20 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       V3 ft = V3::Zero();
       double friction_J = 0.0;
       const double spring_norm = spring.norm();
+      const cosim::penalty::CoulombCap cone = cosim::penalty::coulomb_cap(spring_norm, cap);
       if (cap <= 0.0 || kt <= 0.0) {
         spring = V3::Zero();
-      } else if (spring_norm >= cap) {
+      } else if (cone.sliding) {
         // Sliding: the spring stays at the cap; the excess is slip, mu fn times its length dissipated.
-        friction_J = cap * (spring_norm - cap) / kt;
-        spring *= cap / spring_norm;
+        friction_J = cosim::penalty::slip_dissipation(spring_norm, cap, kt);
+        spring *= cone.scale;
         ft = spring;
       } else {
         // Sticking: spring plus damper, the sum held within the cone.
-        const double c_t = 2.0 * params.damping_ratio * std::sqrt(kt * m);
+        const double c_t = cosim::penalty::damping_coefficient(params.damping_ratio, kt, m);
         ft = spring - c_t * vt_vec;
-        const double ft_norm = ft.norm();
-        if (ft_norm > cap) ft *= cap / ft_norm;
+        const cosim::penalty::CoulombCap damped = cosim::penalty::coulomb_cap(ft.norm(), cap);
+        if (damped.sliding) ft *= damped.scale;
         friction_J = std::max(0.0, -(ft - spring).dot(vt_vec)) * dt;
       }
       const double ft_mag = ft.norm();
@@ -340,7 +344,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       for (int a = 0; a < 3; ++a) ct.f[a] = force[a], ct.ft[a] = ft[a], ct.normal[a] = n[a], ct.spring[a] = spring[a];
       ct.fn = fn;
       ct.friction_J = friction_J;
-      ct.damping_J = std::min(damping, fn) * std::max(-vn, 0.0) * dt;
+      ct.damping_J = cosim::penalty::approach_damping_power(normal, vn) * dt;
       ct.elastic_J = 0.5 * k * delta * delta + (ft_mag > 0.0 ? 0.5 * spring.squaredNorm() / kt : 0.0);
     };
     // Face contacts: every facet whose plane the particle penetrates with its
@@ -363,7 +367,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       const std::uint32_t* q = &s.facet_nodes[4 * f];
       const V3 a = node(q[0]), b = node(q[1]), cc = node(q[2]), d = node(q[3]);
       const V3& n = normal[f];
-      const double gap = (p - (a + b + cc + d) * 0.25).dot(n);
+      const double gap = (p - cosim::quad_centroid(a, b, cc, d)).dot(n);
       if (gap < radius && gap > -depth) {
         const V3 proj = p - gap * n;
         double w3[3];

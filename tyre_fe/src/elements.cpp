@@ -30,6 +30,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "cosim/error.hpp"
+#include "cosim/quad_facet.hpp"
 
 namespace tyre_fe {
 namespace {
@@ -130,7 +131,7 @@ Hex8Reference hex8_reference(const double X[8][3]) {
       d1[k] = X[face[2]][k] - X[face[0]][k];
       d2[k] = X[face[3]][k] - X[face[1]][k];
     }
-    max_face_area = std::max(max_face_area, 0.5 * d1.cross(d2).norm());
+    max_face_area = std::max(max_face_area, cosim::quad_area_vector_from_diagonals(d1, d2).norm());
   }
   ref.characteristic_length_m = volume / max_face_area;
   return ref;

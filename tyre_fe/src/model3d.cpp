@@ -8,14 +8,10 @@
 #include <Eigen/Geometry>
 
 #include "cosim/error.hpp"
+#include "cosim/quad_facet.hpp"
 
 namespace tyre_fe {
 namespace {
-
-// Area vector of a quadrilateral facet (half the cross product of its diagonals).
-Eigen::Vector3d facet_area_vector(const std::vector<Eigen::Vector3d>& x, const std::array<int, 4>& n) {
-  return 0.5 * (x[n[2]] - x[n[0]]).cross(x[n[3]] - x[n[1]]);
-}
 
 bool touches_ground(SurfaceTag t) {
   return t != SurfaceTag::inner_liner && t != SurfaceTag::rim_contact;
@@ -148,7 +144,9 @@ Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSe
     const auto& facet = mesh.facets[f];
     if (facet.tag == SurfaceTag::inner_liner) m.pressure_facets.push_back(static_cast<int>(f));
     if (!touches_ground(facet.tag)) continue;
-    const double a = facet_area_vector(mesh.nodes, facet.nodes).norm();
+    const auto& x = mesh.nodes;
+    const auto& q = facet.nodes;
+    const double a = cosim::quad_area_vector(x[q[0]], x[q[1]], x[q[2]], x[q[3]]).norm();
     for (int n : facet.nodes) area[n] += a / 4.0, outer[n] = 1;
   }
   m.is_rim_node.assign(nn, 0);

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "cosim/error.hpp"
+#include "cosim/quad_facet.hpp"
 #include "tyre_fe/geometry.hpp"
 
 namespace tyre_fe {
@@ -260,8 +261,8 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
       facet.hex = static_cast<int>(e);
       const Eigen::Vector3d p0 = m.nodes[facet.nodes[0]], p1 = m.nodes[facet.nodes[1]],
                             p2 = m.nodes[facet.nodes[2]], p3 = m.nodes[facet.nodes[3]];
-      const Eigen::Vector3d mid = 0.25 * (p0 + p1 + p2 + p3);
-      const Eigen::Vector3d normal = (p2 - p0).cross(p3 - p1).normalized();
+      const Eigen::Vector3d mid = cosim::quad_centroid(p0, p1, p2, p3);
+      const Eigen::Vector3d normal = cosim::unit_normal(cosim::quad_area_vector(p0, p1, p2, p3));
       const double radial = normal.dot(Eigen::Vector3d(mid.x(), 0.0, mid.z()).normalized());
       bool all_rim = true;
       for (int n : facet.nodes) all_rim = all_rim && rim_2d[m.node_source[n]];

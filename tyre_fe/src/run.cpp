@@ -9,6 +9,7 @@
 #include "cosim/coupling_window.hpp"
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
+#include "cosim/ramp.hpp"
 #include "cosim/parallel.hpp"
 #include "cosim/participant.hpp"
 #include "tyre_fe/model3d.hpp"
@@ -36,11 +37,8 @@ double free_radius(const Model3d& m, const State3d& s) {
   return s.rim.z - lowest;
 }
 
-double smooth_ramp(double t, double ramp) {
-  if (ramp <= 0.0 || t >= ramp) return 1.0;
-  const double u = t / ramp;
-  return u * u * (3.0 - 2.0 * u);  // smoothstep: zero rate at both ends
-}
+// The wheel load, speed and drive torque ramp in with zero rate at both ends.
+double smooth_ramp(double t, double ramp) { return cosim::ramp(cosim::RampCurve::smoothstep, t, ramp); }
 
 nlohmann::json energy_json(const Energies& e) {
   return {{"kinetic_J", e.kinetic_J},           {"internal_J", e.internal_J},

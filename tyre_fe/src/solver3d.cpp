@@ -8,6 +8,8 @@
 #include <omp.h>
 
 #include "cosim/parallel.hpp"
+#include "cosim/penalty_contact.hpp"
+#include "cosim/quad_facet.hpp"
 
 namespace tyre_fe {
 
@@ -143,13 +145,16 @@ void pressure_forces(const Model3d& m, State3d& s) {
     const auto& n = m.mesh.facets[fi].nodes;
     const Eigen::Vector3d d1(s.x[n[2]] - s.x[n[0]], s.y[n[2]] - s.y[n[0]], s.z[n[2]] - s.z[n[0]]);
     const Eigen::Vector3d d2(s.x[n[3]] - s.x[n[1]], s.y[n[3]] - s.y[n[1]], s.z[n[3]] - s.z[n[1]]);
-    const Eigen::Vector3d f = -0.125 * s.pressure_Pa * d1.cross(d2);  // -p A / 4 per node
+    const Eigen::Vector3d f = -0.25 * s.pressure_Pa * cosim::quad_area_vector_from_diagonals(d1, d2);  // -p A / 4 per node
     for (int a : n) {
       s.fx[a] += f.x(), s.fy[a] += f.y(), s.fz[a] += f.z();
       s.pressure_fx[a] += f.x(), s.pressure_fy[a] += f.y(), s.pressure_fz[a] += f.z();
     }
   }
 }
+
+// The road's normal damper, a fraction of critical while approaching.
+constexpr double kRoadDampingRatio = 0.1;
 
 // Stage 4: road contact, node to plane. Normal: penalty k = scale m / dt^2 with 10 %
 // of critical damping while approaching. Friction: an elastic stick spring of the
@@ -170,14 +175,14 @@ void road_contact(const Model3d& m, State3d& s) {
     }
     const double mass = m.node_mass_kg[i];
     const double k = r.penalty_scale * mass / dt2;
-    double fn = k * g;
-    if (s.vz[i] < 0.0) fn -= 0.2 * std::sqrt(k * mass) * s.vz[i];
+    const double damper = cosim::penalty::damping_coefficient(kRoadDampingRatio, k, mass);
+    const double fn = cosim::penalty::normal_force(k, g, s.vz[i], damper, cosim::penalty::Damping::approach_only).force_N;
     if (!r.in_contact[c]) r.anchor_x[c] = s.x[i], r.anchor_y[c] = s.y[i], r.in_contact[c] = 1;
     double ftx = -k * (s.x[i] - r.anchor_x[c]), fty = -k * (s.y[i] - r.anchor_y[c]);
     const double ft = std::hypot(ftx, fty), limit = r.friction_coefficient * fn;
-    if (ft > limit) {
-      const double scale = ft > 0.0 ? limit / ft : 0.0;
-      ftx *= scale, fty *= scale;
+    const cosim::penalty::CoulombCap cone = cosim::penalty::coulomb_cap(ft, limit);
+    if (cone.sliding) {
+      ftx *= cone.scale, fty *= cone.scale;
       r.anchor_x[c] = s.x[i] + ftx / k, r.anchor_y[c] = s.y[i] + fty / k;
     }
     s.fx[i] += ftx, s.fy[i] += fty, s.fz[i] += fn;

@@ -1,5 +1,8 @@
 #pragma once
-// Starting participant programs as child processes.
+// Starting programs as child processes: the participants of a run (launcher),
+// and the helper processes of tests and benchmarks.
+#include <sys/types.h>
+
 #include <string>
 #include <vector>
 
@@ -7,6 +10,26 @@ namespace cosim {
 
 // Folder of the running executable (participants live beside the launcher).
 std::string executable_folder();
+
+// Where a child's standard output and error go: a file (created or truncated),
+// or, if empty, the parent's. The same path for both puts both in one file.
+struct ChildOutput {
+  std::string stdout_path;
+  std::string stderr_path;
+};
+
+// Starts `program` (argv[0]) with `args` and returns at once with its process
+// id. Throws cosim::Error if it cannot be started.
+pid_t start_child(const std::string& program, const std::vector<std::string>& args,
+                  const ChildOutput& output = {});
+
+// Waits for a child of start_child and returns its exit code (128 + signal if
+// it was killed).
+int wait_child(pid_t pid);
+
+// As wait_child, but kills the child (SIGKILL) if it has not ended within
+// `timeout_s`; it then returns 128 + SIGKILL.
+int wait_child_for(pid_t pid, double timeout_s);
 
 // Runs `program` with `args`, waits, and returns its exit code (128 + signal
 // if it was killed). Throws cosim::Error if it cannot be started.

@@ -16,7 +16,8 @@ struct FacetGeometry {
 };
 
 // Centroid = mean of the 4 nodes; vector area = (x2 - x0) x (x3 - x1) / 2, exact
-// for a planar quad (the bilinear quad's mean normal otherwise). Throws
+// for a planar quad (the bilinear quad's mean normal otherwise); cosim::quad_facet
+// per facet. Throws
 // cosim::Error on size mismatches, out-of-range node indices or a zero-area facet.
 FacetGeometry quad_facet_geometry(const std::vector<double>& x_m, const std::vector<double>& y_m,
                                   const std::vector<double>& z_m, const std::vector<std::uint32_t>& facet_nodes);
