@@ -237,6 +237,27 @@ FieldLocator Loaded<Msg>::locator_at(const pb::Descriptor* d, const std::string&
 template struct Loaded<scene::Scene>;
 template struct Loaded<scene::Study>;
 
+void fill_schema_defaults(pb::Message& message) {
+  const pb::Descriptor* d = message.GetDescriptor();
+  const pb::Reflection* r = message.GetReflection();
+  for (int i = 0; i < d->field_count(); ++i) {
+    const pb::FieldDescriptor* f = d->field(i);
+    if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_MESSAGE) {
+      // Only the sections the scene has: a default never creates a section.
+      if (f->is_repeated()) {
+        for (int k = 0; k < r->FieldSize(message, f); ++k) fill_schema_defaults(*r->MutableRepeatedMessage(&message, f, k));
+      } else if (r->HasField(message, f)) {
+        fill_schema_defaults(*r->MutableMessage(&message, f));
+      }
+      continue;
+    }
+    if (!f->options().HasExtension(scene::default_value)) continue;
+    if (f->cpp_type() != pb::FieldDescriptor::CPPTYPE_DOUBLE || f->is_repeated())
+      throw Error("configs/schema/scene.proto: " + f->full_name() + ": a default_value needs a single double field");
+    if (r->GetDouble(message, f) == 0.0) r->SetDouble(&message, f, f->options().GetExtension(scene::default_value));
+  }
+}
+
 std::unique_ptr<LoadedScene> load_scene(const std::string& path,
                                         const std::vector<std::string>& overrides) {
   auto loaded = std::make_unique<LoadedScene>();
@@ -278,6 +299,7 @@ std::unique_ptr<LoadedScene> load_scene(const std::string& path,
     const std::string material_path = "sph.blocks[" + std::to_string(b) + "].material";
     loaded->extra_sources[material_path] = {{file, loaded->trees.back().get()}};
   }
+  fill_schema_defaults(loaded->message);
   return loaded;
 }
 

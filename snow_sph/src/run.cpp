@@ -148,8 +148,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
     const auto& c = scene_.coupling();
     SurfaceContactParameters contact;
     contact.particle_radius_m = 0.5 * model.settings.spacing;
-    contact.stiffness_N_per_m = model.settings.contact_stiffness *
-                                (c.contact_stiffness_scale() > 0 ? c.contact_stiffness_scale() : 1.0);
+    contact.stiffness_N_per_m = model.settings.contact_stiffness * c.contact_stiffness_scale();
     solver_->couple(contact);
     // A particle still moving faster than 1 cm/s stays in the active domain
     // (docs/coupling.md): the resting terrain is at rest to well below that.

@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
     if (coupling.coupled) {
       const auto& c = scene->message.coupling();
       cosim::coupling::Session session(coupling.session(cosim::transport::Role::tyre, scene->message));
-      tyre_fe::DdsTerrainPort port(session, c.contact_band_m() > 0 ? c.contact_band_m() : 0.12);
+      tyre_fe::DdsTerrainPort port(session, c.contact_band_m());
       tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
       options.terrain = &port;
       try {

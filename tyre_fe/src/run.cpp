@@ -328,7 +328,7 @@ void TyreRun::begin_stage() {
 void TyreRun::join_terrain() {
   const Model3d& model = *model_;
   const auto& c = scene_.coupling();
-  const double gap = c.initial_gap_m() > 0 ? c.initial_gap_m() : 0.005;
+  const double gap = c.initial_gap_m();
   double lowest = 1e30;
   for (int n : model.contact_nodes) lowest = std::min(lowest, s_.z[n]);
   const double lift = gap - lowest;

@@ -205,13 +205,13 @@ TyreSetup tyre_setup(const cosim::LoadedScene& loaded) {
   s.pattern.sipe_width_m = p.sipe_width_m();
   s.pattern.sipe_depth_m = p.sipe_depth_m();
   s.pattern.elements_per_pitch = p.elements_per_pitch();
-  s.bulk_to_shear_ratio = t.bulk_to_shear_ratio() > 0 ? t.bulk_to_shear_ratio() : 20.0;
+  s.bulk_to_shear_ratio = t.bulk_to_shear_ratio();
   s.bead_tied_to_rim = !t.rim().deformable_bead();
   cosim::ValidationReport report;
   const Materials mats = collect_materials(loaded, report);
   report.throw_if_failed();
   s.materials_source = mats.source;
-  s.materials.hourglass_coefficient = t.hourglass_coefficient() > 0 ? t.hourglass_coefficient() : 0.05;
+  s.materials.hourglass_coefficient = t.hourglass_coefficient();
   for (int k = 0; k < kRegionCount; ++k) {
     const auto& m = mats.regions[k]->material;
     SolidMaterial& solid = s.materials.solid[k];

@@ -73,6 +73,11 @@ std::unique_ptr<LoadedScene> load_scene(const std::string& path,
                                         const std::vector<std::string>& overrides = {});
 std::unique_ptr<LoadedStudy> load_study(const std::string& path);
 
+// Gives every numeric field that the schema declares a `default_value` for
+// (configs/schema/scene.proto) and that is 0 (left out) its default, in every
+// section present; load_scene() does it after the overrides.
+void fill_schema_defaults(google::protobuf::Message& message);
+
 // Parses text into `message`; throws cosim::Error with file:line:col.
 void parse_text_file(const std::string& path, google::protobuf::Message& message,
                      google::protobuf::TextFormat::ParseInfoTree* tree);

@@ -66,8 +66,8 @@ struct CouplingCli {
     o.transport.network_interface = interface;
     if (!peers.empty()) o.transport.static_peers = peers;
     o.transport.multicast = multicast;
-    if (c.step_timeout_s() > 0) o.step_timeout_s = c.step_timeout_s();
-    if (c.start_timeout_s() > 0) o.start_timeout_s = c.start_timeout_s();
+    o.step_timeout_s = c.step_timeout_s();
+    o.start_timeout_s = c.start_timeout_s();
     return o;
   }
 };
