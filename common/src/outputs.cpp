@@ -61,60 +61,19 @@ void CsvWriter::flush() {
   last_flush_ = std::chrono::steady_clock::now();
 }
 
-namespace {
-// Legacy VTK binary is big-endian.
-void put_be_float(std::ofstream& out, double v) {
-  float f = static_cast<float>(v);
-  std::uint32_t u;
-  std::memcpy(&u, &f, 4);
-  u = __builtin_bswap32(u);
-  out.write(reinterpret_cast<const char*>(&u), 4);
-}
-void put_be_int(std::ofstream& out, std::int32_t v) {
-  std::uint32_t u = __builtin_bswap32(static_cast<std::uint32_t>(v));
-  out.write(reinterpret_cast<const char*>(&u), 4);
-}
-}  // namespace
-
-VtkSeries::VtkSeries(std::string folder, std::string name)
-    : folder_(std::move(folder)), name_(std::move(name)) {
-  make_folder(folder_);
-}
+VtkSeries::VtkSeries(std::string folder, std::string name) : series_(std::move(folder), std::move(name)) {}
 
 std::string VtkSeries::write(double time_s, std::size_t n, const double* x, const double* y,
                              const double* z, const std::vector<ScalarField>& scalars,
                              const std::vector<VectorField>& vectors) {
-  std::ostringstream file;
-  file << name_ << "_" << std::setw(5) << std::setfill('0') << entries_.size() << ".vtk";
-  const std::string path = folder_ + "/" + file.str();
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error(path + ": cannot write");
-  out << "# vtk DataFile Version 3.0\n" << name_ << " t=" << time_s << " s\nBINARY\nDATASET POLYDATA\n";
-  out << "POINTS " << n << " float\n";
-  for (std::size_t i = 0; i < n; ++i) put_be_float(out, x[i]), put_be_float(out, y[i]), put_be_float(out, z[i]);
-  out << "\nVERTICES " << n << " " << 2 * n << "\n";
-  for (std::size_t i = 0; i < n; ++i) put_be_int(out, 1), put_be_int(out, static_cast<std::int32_t>(i));
-  out << "\nPOINT_DATA " << n << "\n";
-  for (const auto& f : scalars) {
-    out << "SCALARS " << f.name << " float 1\nLOOKUP_TABLE default\n";
-    for (std::size_t i = 0; i < n; ++i) put_be_float(out, f.values[i]);
-    out << "\n";
-  }
-  for (const auto& f : vectors) {
-    out << "VECTORS " << f.name << " float\n";
-    for (std::size_t i = 0; i < n; ++i) put_be_float(out, f.x[i]), put_be_float(out, f.y[i]), put_be_float(out, f.z[i]);
-    out << "\n";
-  }
-  if (!out) throw Error(path + ": write failed");
-  entries_.emplace_back(file.str(), time_s);
-  write_index();
-  return file.str();
-}
-
-void VtkSeries::write_index() const {
-  nlohmann::json files = nlohmann::json::array();
-  for (const auto& [name, t] : entries_) files.push_back({{"name", name}, {"time", t}});
-  write_json(folder_ + "/" + name_ + ".vtk.series", {{"file-series-version", "1.0"}, {"files", files}});
+  std::ostringstream title;
+  title << series_.name() << " t=" << time_s << " s";
+  auto file = vtk::LegacyFile::poly_data(title.str(), vtk::Real::Float32);
+  file.points(n, x, y, z);
+  file.vertices();
+  for (const auto& f : scalars) file.scalars(vtk::LegacyFile::On::Points, f.name, f.values);
+  for (const auto& f : vectors) file.vectors(vtk::LegacyFile::On::Points, f.name, f.x, f.y, f.z);
+  return series_.write(time_s, file);
 }
 
 bool plot_csv(const std::string& csv, const std::string& png, int x_column,

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/vtk.hpp"
+
 namespace cosim {
 
 // Creates the folder (and parents); throws cosim::Error if it cannot.
@@ -34,8 +36,9 @@ class CsvWriter {
   std::chrono::steady_clock::time_point last_flush_;
 };
 
-// Point cloud output (legacy binary VTK POLYDATA, one file per frame) plus a
-// "<name>.vtk.series" index that ParaView opens as a time series.
+// Point cloud output (legacy binary VTK POLYDATA of float points, one file per
+// frame) plus a "<name>.vtk.series" index that ParaView opens as a time series;
+// written through the project's one VTK writer (cosim/vtk.hpp).
 class VtkSeries {
  public:
   VtkSeries(std::string folder, std::string name);
@@ -53,12 +56,10 @@ class VtkSeries {
   std::string write(double time_s, std::size_t count, const double* x, const double* y,
                     const double* z, const std::vector<ScalarField>& scalars,
                     const std::vector<VectorField>& vectors);
-  std::size_t frames() const { return entries_.size(); }
+  std::size_t frames() const { return series_.frames(); }
 
  private:
-  void write_index() const;
-  std::string folder_, name_;
-  std::vector<std::pair<std::string, double>> entries_;
+  vtk::Series series_;
 };
 
 // A PNG line plot of CSV columns (1-based column numbers) drawn by gnuplot.
