@@ -18,17 +18,6 @@ std::vector<Eigen::Vector3d> positions_of(const State3d& s) {
   return x;
 }
 
-bool run_gnuplot(const std::string& script_path, const std::string& script) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
-  {
-    std::ofstream gp(script_path);
-    gp << script;
-  }
-  const bool ok = std::system(("gnuplot '" + script_path + "' >/dev/null 2>&1").c_str()) == 0;
-  std::remove(script_path.c_str());
-  return ok;
-}
-
 }  // namespace
 
 static VtkField facet_pressure(const Model3d& model, const State3d& s) {
@@ -109,13 +98,11 @@ void write_footprint(const std::string& folder, const Model3d& model, const Stat
     for (int n : model.contact_nodes)
       if (p[n] > 0.0) out << s.x[n] - s.rim.x << "," << s.y[n] << "," << p[n] << "\n";
   }
-  std::ostringstream gp;
-  gp << "set terminal pngcairo size 900,700 font ',11'\nset output '" << folder << "/footprint.png'\n"
-     << "set datafile separator ','\nset size ratio -1\nset grid\n"
-     << "set title 'Footprint: contact pressure [kPa] (x forward, y left)'\n"
-     << "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset cblabel 'kPa'\nset palette rgb 33,13,10\n"
-     << "plot '" << csv << "' using 1:2:($3/1000) every ::1 with points pt 5 ps 1.6 palette notitle\n";
-  run_gnuplot(folder + "/footprint.gp", gp.str());
+  cosim::PlotOptions o;
+  o.title = "Footprint: contact pressure [kPa] (x forward, y left)";
+  o.x_label = "x [m]", o.y_label = "y [m]", o.colour_label = "kPa";
+  o.height_px = 700, o.equal_axes = true;
+  cosim::plot_png(folder + "/footprint.png", o, {{csv, "1:2:($3/1000)", "points pt 5 ps 1.6 palette", ""}});
 }
 
 void write_plots(const std::string& folder) {

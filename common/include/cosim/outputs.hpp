@@ -62,9 +62,31 @@ class VtkSeries {
   vtk::Series series_;
 };
 
-// A PNG line plot of CSV columns (1-based column numbers) drawn by gnuplot.
-// Returns false (and writes nothing) if gnuplot is not available: a missing
-// plot never fails a run.
+// PNG plots of CSV files, drawn by gnuplot (pngcairo terminal); the project's
+// one gnuplot call. Every plot returns false (and writes nothing) if gnuplot is
+// not on the PATH or fails: a missing plot never fails a run.
+//
+// One curve: `columns` is gnuplot's `using` spec ("1:4", "6:(abs($9)*100)",
+// "1:2:($3/1000)"), `style` its `with` clause; the CSV's first row (the header)
+// is skipped. An empty title draws the curve without a key entry.
+struct PlotCurve {
+  std::string csv;
+  std::string columns;
+  std::string style = "lines lw 2";
+  std::string title;
+};
+struct PlotOptions {
+  std::string title, x_label, y_label;
+  int width_px = 900, height_px = 600;
+  bool log_x = false, log_y = false;
+  bool equal_axes = false;   // one metre is as long on x as on y
+  std::string colour_label;  // non-empty: a colour bar for `palette` curves
+  bool key = true;
+  std::string extra_commands;  // gnuplot lines, each ending in "\n", before `plot`
+};
+bool plot_png(const std::string& png, const PlotOptions& options, const std::vector<PlotCurve>& curves);
+
+// A line plot of CSV columns (1-based column numbers) against x_column.
 struct PlotSeries {
   int column;
   std::string title;
