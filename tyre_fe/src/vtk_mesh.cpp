@@ -45,6 +45,19 @@ std::vector<int> region_ids(const std::vector<Region>& r) {
   return out;
 }
 
+// A grid of one cell type with each cell's Region ("region") and the given fields.
+template <std::size_t N>
+LegacyFile region_grid(const std::string& title, const std::vector<Eigen::Vector3d>& p,
+                       const std::vector<std::array<int, N>>& cells, CellType type, const std::vector<Region>& regions,
+                       const std::vector<VtkField>& point_fields, const std::vector<VtkField>& cell_fields) {
+  auto file = grid(title, p);
+  file.cells(connectivity(cells), static_cast<int>(N), type);
+  file.int_scalars(On::Cells, "region", region_ids(regions));
+  add_fields(file, On::Cells, cell_fields);
+  add_fields(file, On::Points, point_fields);
+  return file;
+}
+
 void check_positions(const std::string& what, std::size_t positions, std::size_t nodes) {
   if (positions != nodes)
     throw cosim::Error("VTK file '" + what + "': " + std::to_string(positions) + " positions for " +
@@ -73,24 +86,16 @@ cosim::vtk::LegacyFile vtk_cross_section(const CrossSection& section, const std:
   check_positions("cross-section", x.size(), section.nodes.size());
   std::vector<Eigen::Vector3d> p;
   for (const auto& ry : x) p.emplace_back(0.0, ry.y(), ry.x());
-  auto file = grid("tyre_fe cross-section (x, y, z) = (0, y, r)", p);
-  file.cells(connectivity(section.quads), 4, CellType::Quad);
-  file.int_scalars(On::Cells, "region", region_ids(section.quad_region));
-  add_fields(file, On::Cells, cell_fields);
-  add_fields(file, On::Points, point_fields);
-  return file;
+  return region_grid("tyre_fe cross-section (x, y, z) = (0, y, r)", p, section.quads, CellType::Quad,
+                     section.quad_region, point_fields, cell_fields);
 }
 
 cosim::vtk::LegacyFile vtk_mesh(const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions,
                                 const std::vector<VtkField>& point_fields,
                                 const std::vector<VtkField>& cell_fields) {
   check_positions("3D mesh", positions.size(), mesh.nodes.size());
-  auto file = grid("tyre_fe 3D mesh", positions);
-  file.cells(connectivity(mesh.hexes), 8, CellType::Hexahedron);
-  file.int_scalars(On::Cells, "region", region_ids(mesh.hex_region));
-  add_fields(file, On::Cells, cell_fields);
-  add_fields(file, On::Points, point_fields);
-  return file;
+  return region_grid("tyre_fe 3D mesh", positions, mesh.hexes, CellType::Hexahedron, mesh.hex_region,
+                     point_fields, cell_fields);
 }
 
 cosim::vtk::LegacyFile vtk_facets(const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions,
