@@ -69,19 +69,15 @@ std::string csv_number(const nlohmann::json& v) {
 }
 
 void plot(const std::string& dir, const std::string& field, const std::string& title) {
-  const std::string script = dir + "/error_vs_runtime.gp";
-  std::ofstream gp(script);
-  gp << "set terminal pngcairo size 900,600 font ',11' noenhanced\n"
-     << "set output '" << dir << "/error_vs_runtime.png'\n"
-     << "set datafile separator ','\n"
-     << "set title '" << title << "'\n"
-     << "set xlabel 'wall time [s]'\nset ylabel '|error| in " << field << " [%]'\n"
-     << "set logscale x\nset grid\nset key off\nset offsets graph 0.05, graph 0.15, graph 0.1, graph 0.1\n"
-     << "plot '" << dir << "/table.csv' using 6:(abs($9)*100) every ::1 with linespoints pt 7 ps 1.5 lw 2, "
-     << "'' using 6:(abs($9)*100):1 every ::1 with labels offset 0,1.2\n";
-  gp.close();
-  const int code = std::system(("gnuplot '" + script + "' 2>&1").c_str());
-  if (code != 0) throw Error("gnuplot failed on " + script + " (is gnuplot installed? scripts/setup.sh installs it)");
+  PlotOptions o;
+  o.title = title, o.x_label = "wall time [s]", o.y_label = "|error| in " + field + " [%]";
+  o.log_x = true, o.key = false;
+  o.extra_commands = "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.1\n";
+  const std::string table = dir + "/table.csv";
+  if (!plot_png(dir + "/error_vs_runtime.png", o,
+                {{table, "6:(abs($9)*100)", "linespoints pt 7 ps 1.5 lw 2", ""},
+                 {table, "6:(abs($9)*100):1", "labels offset 0,1.2", ""}}))
+    throw Error("gnuplot failed on " + dir + "/error_vs_runtime.png (is gnuplot installed? scripts/setup.sh installs it)");
 }
 
 }  // namespace

@@ -61,101 +61,71 @@ void CsvWriter::flush() {
   last_flush_ = std::chrono::steady_clock::now();
 }
 
-namespace {
-// Legacy VTK binary is big-endian.
-void put_be_float(std::ofstream& out, double v) {
-  float f = static_cast<float>(v);
-  std::uint32_t u;
-  std::memcpy(&u, &f, 4);
-  u = __builtin_bswap32(u);
-  out.write(reinterpret_cast<const char*>(&u), 4);
-}
-void put_be_int(std::ofstream& out, std::int32_t v) {
-  std::uint32_t u = __builtin_bswap32(static_cast<std::uint32_t>(v));
-  out.write(reinterpret_cast<const char*>(&u), 4);
-}
-}  // namespace
-
-VtkSeries::VtkSeries(std::string folder, std::string name)
-    : folder_(std::move(folder)), name_(std::move(name)) {
-  make_folder(folder_);
-}
+VtkSeries::VtkSeries(std::string folder, std::string name) : series_(std::move(folder), std::move(name)) {}
 
 std::string VtkSeries::write(double time_s, std::size_t n, const double* x, const double* y,
                              const double* z, const std::vector<ScalarField>& scalars,
                              const std::vector<VectorField>& vectors) {
-  std::ostringstream file;
-  file << name_ << "_" << std::setw(5) << std::setfill('0') << entries_.size() << ".vtk";
-  const std::string path = folder_ + "/" + file.str();
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error(path + ": cannot write");
-  out << "# vtk DataFile Version 3.0\n" << name_ << " t=" << time_s << " s\nBINARY\nDATASET POLYDATA\n";
-  out << "POINTS " << n << " float\n";
-  for (std::size_t i = 0; i < n; ++i) put_be_float(out, x[i]), put_be_float(out, y[i]), put_be_float(out, z[i]);
-  out << "\nVERTICES " << n << " " << 2 * n << "\n";
-  for (std::size_t i = 0; i < n; ++i) put_be_int(out, 1), put_be_int(out, static_cast<std::int32_t>(i));
-  out << "\nPOINT_DATA " << n << "\n";
-  for (const auto& f : scalars) {
-    out << "SCALARS " << f.name << " float 1\nLOOKUP_TABLE default\n";
-    for (std::size_t i = 0; i < n; ++i) put_be_float(out, f.values[i]);
-    out << "\n";
-  }
-  for (const auto& f : vectors) {
-    out << "VECTORS " << f.name << " float\n";
-    for (std::size_t i = 0; i < n; ++i) put_be_float(out, f.x[i]), put_be_float(out, f.y[i]), put_be_float(out, f.z[i]);
-    out << "\n";
-  }
-  if (!out) throw Error(path + ": write failed");
-  entries_.emplace_back(file.str(), time_s);
-  write_index();
-  return file.str();
+  std::ostringstream title;
+  title << series_.name() << " t=" << time_s << " s";
+  auto file = vtk::LegacyFile::poly_data(title.str(), vtk::Real::Float32);
+  file.points(n, x, y, z);
+  file.vertices();
+  for (const auto& f : scalars) file.scalars(vtk::LegacyFile::On::Points, f.name, f.values);
+  for (const auto& f : vectors) file.vectors(vtk::LegacyFile::On::Points, f.name, f.x, f.y, f.z);
+  return series_.write(time_s, file);
 }
 
-void VtkSeries::write_index() const {
-  nlohmann::json files = nlohmann::json::array();
-  for (const auto& [name, t] : entries_) files.push_back({{"name", name}, {"time", t}});
-  write_json(folder_ + "/" + name_ + ".vtk.series", {{"file-series-version", "1.0"}, {"files", files}});
+bool plot_png(const std::string& png, const PlotOptions& o, const std::vector<PlotCurve>& curves) {
+  if (curves.empty()) throw Error(png + ": a plot needs at least one curve");
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+  const std::string script = png + ".gp";
+  {
+    std::ofstream gp(script);
+    gp << "set terminal pngcairo size " << o.width_px << "," << o.height_px << " font ',11' noenhanced\n"
+       << "set output '" << png << "'\nset datafile separator ','\nset grid\n";
+    if (o.equal_axes) gp << "set size ratio -1\n";
+    if (o.log_x) gp << "set logscale x\n";
+    if (o.log_y) gp << "set logscale y\n";
+    if (!o.colour_label.empty()) gp << "set palette rgb 33,13,10\nset cblabel '" << o.colour_label << "'\n";
+    if (!o.key) gp << "set key off\n";
+    gp << "set title '" << o.title << "'\nset xlabel '" << o.x_label << "'\nset ylabel '" << o.y_label << "'\n"
+       << o.extra_commands << "plot ";
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+      const auto& c = curves[k];
+      gp << (k ? ", " : "") << "'" << c.csv << "' every ::1 using " << c.columns << " with " << c.style;
+      if (c.title.empty()) gp << " notitle";
+      else gp << " title '" << c.title << "'";
+    }
+    gp << "\n";
+  }
+  const bool ok = std::system(("gnuplot '" + script + "' >/dev/null 2>&1").c_str()) == 0;
+  std::remove(script.c_str());
+  if (!ok) std::remove(png.c_str());
+  return ok;
 }
 
 bool plot_csv(const std::string& csv, const std::string& png, int x_column,
               const std::vector<PlotSeries>& series, const std::string& title,
               const std::string& x_label, const std::string& y_label,
               const std::string& extra_commands) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
-  const std::string script = png + ".gp";
-  {
-    std::ofstream gp(script);
-    gp << "set terminal pngcairo size 900,600 font ',11' noenhanced\nset output '" << png << "'\n"
-       << "set datafile separator ','\nset key autotitle columnhead\nset grid\n"
-       << "set title '" << title << "'\nset xlabel '" << x_label << "'\nset ylabel '" << y_label << "'\n"
-       << extra_commands << "plot ";
-    for (std::size_t k = 0; k < series.size(); ++k)
-      gp << (k ? ", " : "") << "'" << csv << "' using " << x_column << ":" << series[k].column
-         << " with lines lw 2 title '" << series[k].title << "'";
-    gp << "\n";
-  }
-  const bool ok = std::system(("gnuplot '" + script + "' >/dev/null 2>&1").c_str()) == 0;
-  std::remove(script.c_str());
-  return ok;
+  PlotOptions o;
+  o.title = title, o.x_label = x_label, o.y_label = y_label, o.extra_commands = extra_commands;
+  std::vector<PlotCurve> curves;
+  for (const auto& s : series)
+    curves.push_back({csv, std::to_string(x_column) + ":" + std::to_string(s.column), "lines lw 2", s.title});
+  return plot_png(png, o, curves);
 }
 
 bool plot_csv_map(const std::string& csv, const std::string& png, int x_column, int y_column, int value_column,
                   const std::string& title, const std::string& x_label, const std::string& y_label,
                   const std::string& value_label) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
-  const std::string script = png + ".gp";
-  {
-    std::ofstream gp(script);
-    gp << "set terminal pngcairo size 900,700 font ',11' noenhanced\nset output '" << png << "'\n"
-       << "set datafile separator ','\nset grid\nset size ratio -1\nset palette rgb 33,13,10\n"
-       << "set title '" << title << "'\nset xlabel '" << x_label << "'\nset ylabel '" << y_label << "'\n"
-       << "set cblabel '" << value_label << "'\n"
-       << "plot '" << csv << "' every ::1 using " << x_column << ":" << y_column << ":" << value_column
-       << " with points pt 5 ps 1.2 palette notitle\n";
-  }
-  const bool ok = std::system(("gnuplot '" + script + "' >/dev/null 2>&1").c_str()) == 0;
-  std::remove(script.c_str());
-  return ok;
+  PlotOptions o;
+  o.title = title, o.x_label = x_label, o.y_label = y_label;
+  o.height_px = 700, o.equal_axes = true, o.colour_label = value_label;
+  const std::string columns =
+      std::to_string(x_column) + ":" + std::to_string(y_column) + ":" + std::to_string(value_column);
+  return plot_png(png, o, {{csv, columns, "points pt 5 ps 1.2 palette", ""}});
 }
 
 }  // namespace cosim

@@ -18,23 +18,6 @@ std::vector<Eigen::Vector3d> positions_of(const State3d& s) {
   return x;
 }
 
-void write_series_index(const std::string& path, const std::vector<std::pair<std::string, double>>& frames) {
-  nlohmann::json files = nlohmann::json::array();
-  for (const auto& [name, t] : frames) files.push_back({{"name", name}, {"time", t}});
-  cosim::write_json(path, {{"file-series-version", "1.0"}, {"files", files}});
-}
-
-bool run_gnuplot(const std::string& script_path, const std::string& script) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
-  {
-    std::ofstream gp(script_path);
-    gp << script;
-  }
-  const bool ok = std::system(("gnuplot '" + script_path + "' >/dev/null 2>&1").c_str()) == 0;
-  std::remove(script_path.c_str());
-  return ok;
-}
-
 }  // namespace
 
 static VtkField facet_pressure(const Model3d& model, const State3d& s) {
@@ -82,7 +65,7 @@ std::vector<double> contact_pressure_Pa(const Model3d& model, const State3d& s) 
 }
 
 FrameWriter::FrameWriter(std::string folder, double interval_s)
-    : folder_(std::move(folder)), interval_s_(interval_s) {}
+    : interval_s_(interval_s), tyre_frames_(folder, "tyre"), surface_frames_(folder, "surface") {}
 
 void FrameWriter::maybe_write(const Model3d& model, const State3d& s) {
   if (interval_s_ <= 0.0 || s.time_s < next_s_) return;
@@ -93,29 +76,16 @@ void FrameWriter::maybe_write(const Model3d& model, const State3d& s) {
 void FrameWriter::write(const Model3d& model, const State3d& s) {
   if (interval_s_ <= 0.0 || s.time_s == last_written_s_) return;
   last_written_s_ = s.time_s;
-  std::ostringstream index;
-  index << std::setw(5) << std::setfill('0') << tyre_frames_.size();
   const auto x = positions_of(s);
-  std::vector<double> ux(x.size()), uy(x.size()), uz(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    ux[i] = s.x[i] - model.mesh.nodes[i].x();
-    uy[i] = s.y[i] - model.mesh.nodes[i].y();
-    uz[i] = s.z[i] - model.mesh.nodes[i].z();
-  }
-  const std::string tyre_name = "tyre_" + index.str() + ".vtk";
-  const std::string surface_name = "surface_" + index.str() + ".vtk";
   VtkField displacement{"displacement_m", 3, {}}, velocity{"velocity_m_per_s", 3, {}};
   displacement.values.reserve(3 * x.size()), velocity.values.reserve(3 * x.size());
   for (std::size_t i = 0; i < x.size(); ++i) {
-    displacement.values.insert(displacement.values.end(), {ux[i], uy[i], uz[i]});
+    const Eigen::Vector3d u = x[i] - model.mesh.nodes[i];
+    displacement.values.insert(displacement.values.end(), {u.x(), u.y(), u.z()});
     velocity.values.insert(velocity.values.end(), {s.vx[i], s.vy[i], s.vz[i]});
   }
-  write_vtk_mesh(folder_ + "/" + tyre_name, model.mesh, x, {displacement, velocity});
-  write_vtk_facets(folder_ + "/" + surface_name, model.mesh, x, {facet_pressure(model, s)});
-  tyre_frames_.emplace_back(tyre_name, s.time_s);
-  surface_frames_.emplace_back(surface_name, s.time_s);
-  write_series_index(folder_ + "/tyre.vtk.series", tyre_frames_);
-  write_series_index(folder_ + "/surface.vtk.series", surface_frames_);
+  tyre_frames_.write(s.time_s, vtk_mesh(model.mesh, x, {displacement, velocity}));
+  surface_frames_.write(s.time_s, vtk_facets(model.mesh, x, {facet_pressure(model, s)}));
 }
 
 void write_footprint(const std::string& folder, const Model3d& model, const State3d& s) {
@@ -128,13 +98,11 @@ void write_footprint(const std::string& folder, const Model3d& model, const Stat
     for (int n : model.contact_nodes)
       if (p[n] > 0.0) out << s.x[n] - s.rim.x << "," << s.y[n] << "," << p[n] << "\n";
   }
-  std::ostringstream gp;
-  gp << "set terminal pngcairo size 900,700 font ',11'\nset output '" << folder << "/footprint.png'\n"
-     << "set datafile separator ','\nset size ratio -1\nset grid\n"
-     << "set title 'Footprint: contact pressure [kPa] (x forward, y left)'\n"
-     << "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset cblabel 'kPa'\nset palette rgb 33,13,10\n"
-     << "plot '" << csv << "' using 1:2:($3/1000) every ::1 with points pt 5 ps 1.6 palette notitle\n";
-  run_gnuplot(folder + "/footprint.gp", gp.str());
+  cosim::PlotOptions o;
+  o.title = "Footprint: contact pressure [kPa] (x forward, y left)";
+  o.x_label = "x [m]", o.y_label = "y [m]", o.colour_label = "kPa";
+  o.height_px = 700, o.equal_axes = true;
+  cosim::plot_png(folder + "/footprint.png", o, {{csv, "1:2:($3/1000)", "points pt 5 ps 1.6 palette", ""}});
 }
 
 void write_plots(const std::string& folder) {

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/vtk.hpp"
+
 namespace cosim {
 
 // Creates the folder (and parents); throws cosim::Error if it cannot.
@@ -34,8 +36,9 @@ class CsvWriter {
   std::chrono::steady_clock::time_point last_flush_;
 };
 
-// Point cloud output (legacy binary VTK POLYDATA, one file per frame) plus a
-// "<name>.vtk.series" index that ParaView opens as a time series.
+// Point cloud output (legacy binary VTK POLYDATA of float points, one file per
+// frame) plus a "<name>.vtk.series" index that ParaView opens as a time series;
+// written through the project's one VTK writer (cosim/vtk.hpp).
 class VtkSeries {
  public:
   VtkSeries(std::string folder, std::string name);
@@ -53,17 +56,37 @@ class VtkSeries {
   std::string write(double time_s, std::size_t count, const double* x, const double* y,
                     const double* z, const std::vector<ScalarField>& scalars,
                     const std::vector<VectorField>& vectors);
-  std::size_t frames() const { return entries_.size(); }
+  std::size_t frames() const { return series_.frames(); }
 
  private:
-  void write_index() const;
-  std::string folder_, name_;
-  std::vector<std::pair<std::string, double>> entries_;
+  vtk::Series series_;
 };
 
-// A PNG line plot of CSV columns (1-based column numbers) drawn by gnuplot.
-// Returns false (and writes nothing) if gnuplot is not available: a missing
-// plot never fails a run.
+// PNG plots of CSV files, drawn by gnuplot (pngcairo terminal); the project's
+// one gnuplot call. Every plot returns false (and writes nothing) if gnuplot is
+// not on the PATH or fails: a missing plot never fails a run.
+//
+// One curve: `columns` is gnuplot's `using` spec ("1:4", "6:(abs($9)*100)",
+// "1:2:($3/1000)"), `style` its `with` clause; the CSV's first row (the header)
+// is skipped. An empty title draws the curve without a key entry.
+struct PlotCurve {
+  std::string csv;
+  std::string columns;
+  std::string style = "lines lw 2";
+  std::string title;
+};
+struct PlotOptions {
+  std::string title, x_label, y_label;
+  int width_px = 900, height_px = 600;
+  bool log_x = false, log_y = false;
+  bool equal_axes = false;   // one metre is as long on x as on y
+  std::string colour_label;  // non-empty: a colour bar for `palette` curves
+  bool key = true;
+  std::string extra_commands;  // gnuplot lines, each ending in "\n", before `plot`
+};
+bool plot_png(const std::string& png, const PlotOptions& options, const std::vector<PlotCurve>& curves);
+
+// A line plot of CSV columns (1-based column numbers) against x_column.
 struct PlotSeries {
   int column;
   std::string title;

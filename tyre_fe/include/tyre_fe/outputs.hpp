@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "cosim/vtk.hpp"
 #include "tyre_fe/model3d.hpp"
 #include "tyre_fe/solver3d.hpp"
 #include "tyre_fe/terrain_port.hpp"
@@ -29,10 +30,9 @@ class FrameWriter {
   void write(const Model3d& model, const State3d& s);
 
  private:
-  std::string folder_;
   double interval_s_, next_s_ = 0.0;
   double last_written_s_ = -1.0;
-  std::vector<std::pair<std::string, double>> tyre_frames_, surface_frames_;
+  cosim::vtk::Series tyre_frames_, surface_frames_;
 };
 
 // Contact pressure per contact node [Pa] = normal force / tributary area.

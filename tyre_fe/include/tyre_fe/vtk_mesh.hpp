@@ -1,6 +1,8 @@
 #pragma once
 // Legacy VTK (binary, big-endian) output of tyre meshes for ParaView/VisIt:
-// the cross-section, the 3D hex mesh and its tagged boundary facets.
+// the cross-section, the 3D hex mesh and its tagged boundary facets, built with
+// the project's one VTK writer (cosim/vtk.hpp). The vtk_* functions return the
+// file (for a cosim::vtk::Series of frames); the write_vtk_* ones save it.
 //
 // Every writer writes to "<path>.tmp" and renames it over <path> when complete,
 // so a reader never sees a half-written file; failures throw cosim::Error naming
@@ -10,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "cosim/vtk.hpp"
 #include "tyre_fe/mesh.hpp"
 
 namespace tyre_fe {
@@ -21,6 +24,16 @@ struct VtkField {
   int components = 1;
   std::vector<double> values;
 };
+
+cosim::vtk::LegacyFile vtk_cross_section(const CrossSection& section,
+                                         const std::vector<Eigen::Vector2d>& positions = {},
+                                         const std::vector<VtkField>& point_fields = {},
+                                         const std::vector<VtkField>& cell_fields = {});
+cosim::vtk::LegacyFile vtk_mesh(const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions,
+                                const std::vector<VtkField>& point_fields = {},
+                                const std::vector<VtkField>& cell_fields = {});
+cosim::vtk::LegacyFile vtk_facets(const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions,
+                                  const std::vector<VtkField>& facet_fields = {});
 
 // The cross-section as VTK_QUAD cells. Points are placed in the wheel frame's
 // theta = 0 half plane, (x, y, z) = (0, y, r), so that the section overlays the 3D
