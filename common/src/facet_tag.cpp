@@ -1,8 +1,5 @@
 #include "cosim/facet_tag.hpp"
 
-#include <sstream>
-
-#include "cosim/error.hpp"
 #include "cosim/strings.hpp"
 
 namespace cosim {
@@ -23,17 +20,7 @@ const char* facet_tag_name(FacetTag tag) {
 }
 
 FacetTag facet_tag_from_name(const std::string& name) {
-  for (FacetTag t : kAllFacetTags)
-    if (name == facet_tag_name(t)) return t;
-  std::ostringstream msg;
-  msg << "unknown facet tag '" << name << "'; known:";
-  const char* closest = facet_tag_name(kAllFacetTags[0]);
-  for (FacetTag t : kAllFacetTags) {
-    msg << ' ' << facet_tag_name(t);
-    if (edit_distance(name, facet_tag_name(t)) < edit_distance(name, closest)) closest = facet_tag_name(t);
-  }
-  msg << ". Did you mean '" << closest << "'?";
-  throw Error(msg.str());
+  return value_from_name(name, kAllFacetTags, facet_tag_name, "facet tag");
 }
 
 }  // namespace cosim

@@ -234,6 +234,8 @@ bool CouplerRun::advance() {
 void CouplerRun::finalize(cosim::RunRecord& record) {
   nlohmann::json& summary = record.summary();
   nlohmann::json& results = record.results();
+  for (const auto* f : {mesh_filter_.get(), tyre_filter_.get(), wheel_filter_.get(), terrain_filter_.get()})
+    if (f) session_.count_rejections(*f);
   summary["rejected_samples"] = {{"other_run", session_.rejected_run_id()}, {"wrong_step", session_.rejected_step()}};
   if (!joined_) return;
   const auto& c = scene_.coupling();
@@ -271,9 +273,6 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
     results["final_contact_area_m2"] = rows_.back().d.contact_area_m2;
     results["final_sinkage_m"] = rows_.back().d.sinkage_m;
   }
-  for (const auto* f : {mesh_filter_.get(), tyre_filter_.get(), wheel_filter_.get(), terrain_filter_.get()})
-    session_.count_rejections(*f);
-  summary["rejected_samples"] = {{"other_run", session_.rejected_run_id()}, {"wrong_step", session_.rejected_step()}};
   const double wall = record.wall_s();
   const double steps = static_cast<double>(step_);
   summary["performance"] = {{"coupler_forwarding_s", exchange_s_}, {"steps_per_s", wall > 0 ? steps / wall : 0.0},

@@ -15,21 +15,6 @@ namespace {
 constexpr TerrainKind kTerrains[] = {TerrainKind::snow_soft, TerrainKind::snow_hard, TerrainKind::water,
                                      TerrainKind::rigid_road};
 
-template <class T, std::size_t N, class NameFn>
-T from_name(const std::string& name, const T (&all)[N], NameFn name_of, const char* what) {
-  for (T t : all)
-    if (name == name_of(t)) return t;
-  std::ostringstream msg;
-  msg << "unknown " << what << " '" << name << "'; known:";
-  const char* closest = name_of(all[0]);
-  for (T t : all) {
-    msg << ' ' << name_of(t);
-    if (cosim::edit_distance(name, name_of(t)) < cosim::edit_distance(name, closest)) closest = name_of(t);
-  }
-  msg << ". Did you mean '" << closest << "'?";
-  throw cosim::Error(msg.str());
-}
-
 void check_mu(double mu, const std::string& what) {
   if (!std::isfinite(mu) || mu < 0.0) {
     std::ostringstream msg;
@@ -53,7 +38,7 @@ const char* terrain_kind_name(TerrainKind kind) {
 }
 
 TerrainKind terrain_kind_from_name(const std::string& name) {
-  return from_name(name, kTerrains, terrain_kind_name, "terrain kind");
+  return cosim::value_from_name(name, kTerrains, terrain_kind_name, "terrain kind");
 }
 
 void validate(const FrictionRules& rules) {

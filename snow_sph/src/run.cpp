@@ -53,7 +53,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 class SphRun final : public cosim::Participant {
  public:
   SphRun(const cosim::LoadedScene& loaded, const RunOptions& options)
-      : loaded_(loaded), scene_(loaded.message), options_(options), port_(options.exchange) {}
+      : scene_(loaded.message), options_(options), port_(options.exchange) {}
 
   double initialize(cosim::RunRecord& record) override;
   bool advance() override;
@@ -81,7 +81,6 @@ class SphRun final : public cosim::Participant {
   void record_rows(bool force);
   void write_frame();
 
-  const cosim::LoadedScene& loaded_;
   const cosim::scene::Scene& scene_;
   RunOptions options_;
   SurfaceExchange* port_;
@@ -91,7 +90,6 @@ class SphRun final : public cosim::Participant {
                    *contact_csv_ = nullptr;
   std::unique_ptr<cosim::VtkSeries> vtk_;
   double wall_at_coupling_s_ = 0.0, exchange_wait_s_ = 0.0;
-  cosim::RunRecord* record_ = nullptr;
   std::uint64_t exchange_ = 0;
   bool stopped_ = false;
   double dt_min_ = 1e300, dt_max_ = 0.0, dt_sum_ = 0.0;
@@ -102,7 +100,6 @@ class SphRun final : public cosim::Participant {
 };
 
 double SphRun::initialize(cosim::RunRecord& record) {
-  record_ = &record;
   model_ = std::make_unique<Model>(build_model(scene_));
   Model& model = *model_;
   solver_ = std::make_unique<Solver>(model);

@@ -107,7 +107,6 @@ class TyreRun final : public cosim::Participant {
   RunOptions options_;
   TerrainPort* port_;
   cosim::RunRecord* record_ = nullptr;
-  std::unique_ptr<CrossSection> section_;
   std::unique_ptr<Model3d> model_;
   State3d s_;
   std::unique_ptr<FrameWriter> frames_;
@@ -145,13 +144,13 @@ double TyreRun::initialize(cosim::RunRecord& record) {
   summary["tyre_size"] = setup.size_designation;
   summary["materials_source"] = setup.materials_source;
   summary["bulk_to_shear_ratio"] = setup.bulk_to_shear_ratio;
-  section_ = std::make_unique<CrossSection>(make_section(setup));
-  const CrossSection& section = *section_;
+  const CrossSection section = make_section(setup);
   Mesh3D mesh = revolve(section, setup.pattern);
   summary["cross_section"] = {{"nodes", section.nodes.size()}, {"elements", section.quads.size()}};
+  int per_tag[cosim::kFacetTagCount] = {};
+  for (const auto& f : mesh.facets) ++per_tag[static_cast<int>(f.tag)];
   nlohmann::json tags = nlohmann::json::object();
-  for (int k = 0; k < kSurfaceTagCount; ++k) tags[cosim::facet_tag_name(static_cast<SurfaceTag>(k))] = 0;
-  for (const auto& f : mesh.facets) tags[cosim::facet_tag_name(f.tag)] = tags[cosim::facet_tag_name(f.tag)].get<int>() + 1;
+  for (SurfaceTag t : cosim::kAllFacetTags) tags[cosim::facet_tag_name(t)] = per_tag[static_cast<int>(t)];
   results["nodes"] = mesh.nodes.size();
   results["elements"] = mesh.hexes.size();
   results["facets"] = mesh.facets.size();

@@ -43,7 +43,6 @@ class RunRecord {
 
   // Opens out_dir/file with this header (once per file; the run owns it).
   CsvWriter& series(const std::string& file, const std::vector<std::string>& columns);
-  bool has_series(const std::string& file) const { return series_.count(file) > 0; }
   void flush_series();
   void close_series();  // flushes and closes every series (before plotting them)
 

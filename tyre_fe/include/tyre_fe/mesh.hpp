@@ -39,7 +39,6 @@ Region region_from_name(const std::string& name);
 // Tags of 3D boundary facets: the project's one facet-tag enum
 // (cosim/facet_tag.hpp), which the wire carries and the coupler chooses friction by.
 using SurfaceTag = cosim::FacetTag;
-constexpr int kSurfaceTagCount = cosim::kFacetTagCount;
 
 // A rebar layer smeared into the host elements of one region (Abaqus *REBAR LAYER):
 // bars of cross-section `area_m2` every `spacing_m`, at `angle_rad` measured in the
