@@ -51,6 +51,10 @@ int main(int argc, char** argv) {
     const std::size_t ne = model.mesh.hexes.size();
     std::printf("tyre_bench: %s, %zu hexahedra, %zu nodes, %zu contact candidates, dt %.3g s, %d steps\n",
                 scene_file.c_str(), ne, model.mesh.nodes.size(), model.contact_nodes.size(), model.stable_dt_s, steps);
+    if (options.mass_scaling_target_dt_s > 0.0)
+      std::printf("mass scaling to %.3g s (unscaled %.3g s): %.3f kg added, %.2f %% of the tyre's %.2f kg\n",
+                  options.mass_scaling_target_dt_s, model.unscaled_dt_s, model.added_mass_kg,
+                  100.0 * model.added_mass_kg / model.physical_mass_kg, model.physical_mass_kg);
     std::printf("%8s %12s %14s %22s %10s %10s %8s\n", "threads", "wall_s", "us/elem-step", "core-us/elem-step",
                 "internal%", "contact%", "rest%");
     for (int threads : {1, 2}) {

@@ -102,13 +102,7 @@ Hex8Reference hex8_reference(const double X[8][3]) {
   // Flanagan-Belytschko base vectors gamma_a = h_a - (h_a . X_k) B_k (their 1/8
   // normalisation dropped), h_a = eta zeta, zeta xi, xi eta, xi eta zeta.
   for (int a = 0; a < 4; ++a) {
-    double h[8];
-    for (int i = 0; i < 8; ++i) {
-      h[i] = a == 0 ? kEta[i] * kZeta[i]
-           : a == 1 ? kZeta[i] * kXi[i]
-           : a == 2 ? kXi[i] * kEta[i]
-                    : kXi[i] * kEta[i] * kZeta[i];
-    }
+    const double* h = kHex8HourglassPattern[a];
     double hX[3] = {0, 0, 0};
     for (int i = 0; i < 8; ++i)
       for (int k = 0; k < 3; ++k) hX[k] += h[i] * X[i][k];

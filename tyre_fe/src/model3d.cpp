@@ -126,17 +126,6 @@ Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSe
   m.physical_mass_kg = physical;
   m.added_mass_kg = scaled - physical;
 
-  // node -> element entries (CSR), for a gather that gives the same sums on any thread count.
-  std::vector<int> count(nn + 1, 0);
-  for (const auto& h : mesh.hexes)
-    for (int a : h) ++count[a + 1];
-  for (std::size_t i = 0; i < nn; ++i) count[i + 1] += count[i];
-  m.node_hex_begin = count;
-  m.node_hex_entries.resize(count[nn]);
-  std::vector<int> fill(count.begin(), count.end() - 1);
-  for (std::size_t e = 0; e < ne; ++e)
-    for (int a = 0; a < 8; ++a) m.node_hex_entries[fill[mesh.hexes[e][a]]++] = static_cast<int>(e * 8 + a);
-
   // Surfaces: pressure on the inner liner; road contact candidates on the outside.
   std::vector<double> area(nn, 0.0);
   std::vector<char> outer(nn, 0);
@@ -157,6 +146,19 @@ Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSe
       m.contact_node_area_m2.push_back(area[i]);
     }
   m.mesh = std::move(mesh);
+
+  // node -> force offsets (CSR), for a gather that gives the same sums on any thread count.
+  m.hex_batches = build_hex8_batches(m);
+  std::vector<int> count(nn + 1, 0);
+  for (const auto& h : m.mesh.hexes)
+    for (int a : h) ++count[a + 1];
+  for (std::size_t i = 0; i < nn; ++i) count[i + 1] += count[i];
+  m.node_hex_begin = count;
+  m.node_hex_entries.resize(count[nn]);
+  std::vector<int> fill(count.begin(), count.end() - 1);
+  for (std::size_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 8; ++a)
+      m.node_hex_entries[fill[m.mesh.hexes[e][a]]++] = static_cast<int>(m.hex_batches.force_offset(e, a));
   return m;
 }
 

@@ -32,7 +32,7 @@ State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& c
   s.fx.assign(nn, 0.0), s.fy.assign(nn, 0.0), s.fz.assign(nn, 0.0);
   s.pressure_fx.assign(nn, 0.0), s.pressure_fy.assign(nn, 0.0), s.pressure_fz.assign(nn, 0.0);
   s.contact_fx.assign(nn, 0.0), s.contact_fy.assign(nn, 0.0), s.contact_fz.assign(nn, 0.0);
-  s.element_force.assign(model.mesh.hexes.size() * 24, 0.0);
+  s.element_force.assign(model.hex_batches.force_array_size(), 0.0);
   s.element_energy.assign(model.mesh.hexes.size(), 0.0);
   s.element_viscous_power.assign(model.mesh.hexes.size(), 0.0);
   s.element_hourglass.assign(model.mesh.hexes.size(), 0.0);
@@ -81,44 +81,18 @@ double radial_position(const State3d& s, int node) {
 namespace {
 
 // Stage 1: per-element forces (Kirchhoff stress of rubber/steel + rebar + linear bulk
-// viscosity, Abaqus/Explicit 6.3.3), written per element; no scatter.
+// viscosity, Abaqus/Explicit 6.3.3), a batch of elements at a time (hex8_batch.hpp),
+// written per element; no scatter.
 void element_forces(const Model3d& m, State3d& s) {
-  const double b1 = m.options.bulk_viscosity_linear;
-  cosim::parallel_for("tyre element forces", m.mesh.hexes.size(), [&](std::size_t e) {
-    const auto& h = m.mesh.hexes[e];
-    const Hex8Reference& ref = m.reference[e];
-    double xe[8][3];
-    for (int a = 0; a < 8; ++a) xe[a][0] = s.x[h[a]], xe[a][1] = s.y[h[a]], xe[a][2] = s.z[h[a]];
-    const Eigen::Matrix3d F = hex8_deformation_gradient(ref, xe);
-    double energy = 0.0;
-    const SolidMaterial& solid = m.materials.solid[m.material[e]];
-    Eigen::Matrix3d tau = kirchhoff_stress(solid, F, &energy);
-    if (m.rebar_fraction[e] > 0.0)
-      energy += add_rebar_kirchhoff_stress(m.rebar_direction[e], m.rebar_fraction[e], m.rebar_modulus_Pa[e], F, tau);
-    double power = 0.0;
-    if (b1 > 0.0) {
-      // tr(D) = tr(dv/dX F^-1); sigma_v = b1 rho c L_e tr(D) I (tension positive).
-      Eigen::Matrix3d dvdX = Eigen::Matrix3d::Zero();
-      for (int a = 0; a < 8; ++a) {
-        const Eigen::Vector3d v(s.vx[h[a]], s.vy[h[a]], s.vz[h[a]]);
-        const Eigen::Vector3d g(ref.dNdX[a][0], ref.dNdX[a][1], ref.dNdX[a][2]);
-        dvdX.noalias() += v * g.transpose();
-      }
-      const double J = F.determinant();
-      const double trD = (dvdX * F.inverse()).trace();
-      const double q = b1 * m.element_density[e] * m.element_wave_speed[e] * ref.characteristic_length_m * trD;
-      tau.diagonal().array() += J * q;
-      power = -ref.volume_m3 * J * q * trD;  // dissipated (<= 0 as work done on the body)
-    }
-    double f[8][3];
-    const double hourglass = hex8_internal_forces(ref, xe, F, tau, m.materials.hourglass_coefficient,
-                                                  solid.shear_modulus_Pa(), f);
-    double* out = &s.element_force[e * 24];
-    for (int a = 0; a < 8; ++a)
-      for (int k = 0; k < 3; ++k) out[a * 3 + k] = f[a][k];
-    s.element_energy[e] = energy * ref.volume_m3 + hourglass;
-    s.element_hourglass[e] = hourglass;
-    s.element_viscous_power[e] = power;
+  const double* const position[3] = {s.x.data(), s.y.data(), s.z.data()};
+  const double* const velocity[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
+  const bool viscous = m.options.bulk_viscosity_linear > 0.0;
+  const Hex8ElementResults results{s.element_energy.data(), s.element_hourglass.data(),
+                                   s.element_viscous_power.data()};
+  const auto& batches = m.hex_batches.batches;
+  cosim::parallel_for("tyre element forces", batches.size(), [&](std::size_t b) {
+    if (b + 2 < batches.size()) prefetch_hex8_batch(batches[b + 2]);
+    hex8_batch_forces(batches[b], position, velocity, viscous, &s.element_force[b * 24 * kHexLanes], results);
   });
 }
 
@@ -127,8 +101,8 @@ void gather_forces(const Model3d& m, State3d& s) {
   cosim::parallel_for("tyre gather", s.x.size(), [&](std::size_t i) {
     double f[3] = {0.0, 0.0, 0.0};
     for (int k = m.node_hex_begin[i]; k < m.node_hex_begin[i + 1]; ++k) {
-      const double* fe = &s.element_force[static_cast<std::size_t>(m.node_hex_entries[k]) * 3];
-      f[0] -= fe[0], f[1] -= fe[1], f[2] -= fe[2];
+      const double* fe = &s.element_force[static_cast<std::size_t>(m.node_hex_entries[k])];
+      f[0] -= fe[0], f[1] -= fe[kHexLanes], f[2] -= fe[2 * kHexLanes];
     }
     s.fx[i] = f[0], s.fy[i] = f[1], s.fz[i] = f[2];
   });

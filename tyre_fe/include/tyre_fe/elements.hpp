@@ -31,6 +31,14 @@ struct Hex8Reference {
   double hourglass_gram_max;          // largest eigenvalue of the 4x4 Gram matrix of gamma
 };
 
+// The four hourglass patterns h_a of the hexahedron at its nodes (node order above):
+// eta zeta, zeta xi, xi eta, xi eta zeta, each orthogonal to 1, X, Y and Z of the
+// reference cube (Flanagan & Belytschko 1981, eq. 19).
+inline constexpr double kHex8HourglassPattern[4][8] = {{1, 1, -1, -1, -1, -1, 1, 1},
+                                                       {1, -1, -1, 1, -1, 1, 1, -1},
+                                                       {1, -1, 1, -1, 1, -1, 1, -1},
+                                                       {-1, 1, -1, 1, 1, -1, 1, -1}};
+
 // Throws cosim::Error if the reference volume is not positive.
 Hex8Reference hex8_reference(const double X[8][3]);
 

@@ -10,6 +10,7 @@
 
 #include "tyre_fe/axisym.hpp"
 #include "tyre_fe/elements.hpp"
+#include "tyre_fe/hex8_batch.hpp"
 #include "tyre_fe/materials.hpp"
 #include "tyre_fe/mesh.hpp"
 
@@ -33,7 +34,10 @@ struct Model3d {
   std::vector<double> element_density;       // after mass scaling [kg/m^3, incl. rebar]
   std::vector<double> element_wave_speed;    // dilatational, with rebar
   std::vector<double> node_mass_kg;
-  // node -> (hex * 8 + local node) in CSR form, for gathering element forces
+  // The hexahedra in batches for the force loop (hex8_batch.hpp).
+  Hex8Batches hex_batches;
+  // node -> offsets of its forces in the batched force array (Hex8Batches::force_offset)
+  // in CSR form, for a gather that gives the same sums on any thread count.
   std::vector<int> node_hex_begin, node_hex_entries;
   // Facets loaded by the inflation pressure (indices into mesh.facets).
   std::vector<int> pressure_facets;

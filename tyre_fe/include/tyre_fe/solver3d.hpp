@@ -104,7 +104,7 @@ struct State3d {
   std::vector<double> pressure_fx, pressure_fy, pressure_fz;
   std::vector<double> contact_fx, contact_fy, contact_fz;
   std::vector<double> rim_node_v_old;  // rim node velocities at t - dt/2 (x, y, z per rim node)
-  std::vector<double> element_force;  // hex * 24 + a * 3 + k
+  std::vector<double> element_force;  // batched: Hex8Batches::force_offset
   std::vector<double> element_energy;     // strain + hourglass [J]
   std::vector<double> element_hourglass;  // hourglass part [J]
   std::vector<double> element_viscous_power;  // bulk viscosity [W]
