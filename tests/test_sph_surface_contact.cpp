@@ -14,7 +14,7 @@ namespace {
 
 using snow_sph::ContactSurface;
 using snow_sph::SurfaceContactParameters;
-using snow_sph::SurfaceLoads;
+using snow_sph::SurfaceContactResult;
 
 constexpr double kRadius = 0.005, kStiffness = 1e5, kMass = 1e-3, kDt = 1e-6;
 
@@ -44,8 +44,8 @@ struct Particle {
   double ax = 0, ay = 0, az = 0;
 };
 
-SurfaceLoads contact(const ContactSurface& s, Particle& p, const SurfaceContactParameters& prm = params()) {
-  SurfaceLoads loads;
+SurfaceContactResult contact(const ContactSurface& s, Particle& p, const SurfaceContactParameters& prm = params()) {
+  SurfaceContactResult loads;
   snow_sph::surface_contact(s, prm, 1, &p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.m, kDt, &p.ax, &p.ay, &p.az, loads);
   return loads;
 }
@@ -55,7 +55,7 @@ TEST(SurfaceContact, PenaltyForceOnAParticleBelowAFacetCentreIsSplitEquallyOverI
   add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.3);
   const double delta = 0.001;
   Particle p{0.0, 0.0, -(kRadius - delta)};
-  const SurfaceLoads l = contact(s, p);
+  const SurfaceContactResult l = contact(s, p);
   EXPECT_NEAR(p.az * kMass, -kStiffness * delta, 1e-9);  // pushed away from the tyre (down)
   EXPECT_NEAR(p.ax, 0.0, 1e-12);
   for (int a = 0; a < 4; ++a) EXPECT_NEAR(l.node_fz[a], kStiffness * delta / 4.0, 1e-9);
@@ -99,7 +99,7 @@ TEST(SurfaceContact, SlidingLoadsTheStickSpringUpToCoulombThenDissipatesMuFnPerS
   auto call = [&](double vx) {
     Particle p{0.0, 0.0, -(kRadius - delta)};
     p.vx = vx;
-    SurfaceLoads l;
+    SurfaceContactResult l;
     snow_sph::surface_contact(s, params(), 1, &p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.m, kDt, &p.ax, &p.ay,
                               &p.az, l, &history);
     return std::make_pair(p, l);
@@ -126,7 +126,7 @@ TEST(SurfaceContact, SlidingLoadsTheStickSpringUpToCoulombThenDissipatesMuFnPerS
   snow_sph::FrictionHistory none;
   Particle free{0.0, 0.0, -(kRadius - delta)};
   free.vx = v;
-  SurfaceLoads lf;
+  SurfaceContactResult lf;
   snow_sph::surface_contact(smooth, params(), 1, &free.x, &free.y, &free.z, &free.vx, &free.vy, &free.vz, &free.m,
                             kDt, &free.ax, &free.ay, &free.az, lf, &none);
   EXPECT_EQ(free.ax, 0.0);
@@ -147,7 +147,7 @@ TEST(SurfaceContact, ASteadyPullBelowCoulombSticksAtTheElasticOffsetWithoutCreep
     Particle p{0.0, 0.0, -(kRadius - delta)};
     for (int step = 0; step < steps; ++step) {
       p.ax = force / kMass, p.ay = 0.0, p.az = 0.0;
-      SurfaceLoads l;
+      SurfaceContactResult l;
       snow_sph::surface_contact(s, params(), 1, &p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.m, kDt, &p.ax, &p.ay,
                                 &p.az, l, &history);
       p.az = 0.0;  // hold the depth: this test is about the tangential direction
@@ -181,7 +181,7 @@ TEST(SurfaceContact, TheStickFollowsTheParticleOntoANeighbouringFacetAndThroughA
   p.vx = 0.5;
   for (int step = 0; step < 50; ++step) {
     p.ax = 0.0;
-    SurfaceLoads l;
+    SurfaceContactResult l;
     snow_sph::surface_contact(s, params(), 1, &p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.m, kDt, &p.ax, &p.ay,
                               &p.az, l, &history);
   }
@@ -192,7 +192,7 @@ TEST(SurfaceContact, TheStickFollowsTheParticleOntoANeighbouringFacetAndThroughA
     snow_sph::FrictionHistory h = history;
     Particle q{x, 0.0, -(kRadius - delta)};
     q.vx = 0.5;
-    SurfaceLoads l;
+    SurfaceContactResult l;
     snow_sph::surface_contact(surface, params(), 1, &q.x, &q.y, &q.z, &q.vx, &q.vy, &q.vz, &q.m, kDt, &q.ax, &q.ay,
                               &q.az, l, &h);
     return q.ax;
@@ -219,7 +219,7 @@ TEST(SurfaceContact, TheStickFollowsTheParticleOntoANeighbouringFacetAndThroughA
   snow_sph::FrictionHistory h = history;
   Particle q{-(kRadius - delta), 0.0, 0.0};  // the wall's outward normal is -x
   q.vz = 0.5;
-  SurfaceLoads l;
+  SurfaceContactResult l;
   snow_sph::surface_contact(wall, params(), 1, &q.x, &q.y, &q.z, &q.vx, &q.vy, &q.vz, &q.m, kDt, &q.ax, &q.ay, &q.az,
                             l, &h);
   const double c_t = 2.0 * 0.2 * std::sqrt(kStiffness * kMass);
@@ -235,7 +235,7 @@ TEST(SurfaceContact, OverASharedEdgeOfCoplanarFacetsTheForceIsOneFacetsWorth) {
   contact(s, centre);
   for (double x : {1e-9, 0.0}) {  // just off the shared edge, and exactly on it
     Particle edge{x, 0.0, -(kRadius - delta)};
-    const SurfaceLoads l = contact(s, edge);
+    const SurfaceContactResult l = contact(s, edge);
     EXPECT_NEAR(edge.az, centre.az, 1e-9 * std::fabs(centre.az)) << x;
     EXPECT_NEAR(l.total_fz_N, kStiffness * delta, 1e-9) << x;
   }
@@ -256,7 +256,7 @@ TEST(SurfaceContact, InAConcaveCornerBothFacesPushAndTheForceIsTheirSum) {
   s.friction_coefficient.push_back(0.0);
   const double dx = 0.001, dz = 0.002;
   Particle p{kRadius - dx, 0.0, -(kRadius - dz)};
-  const SurfaceLoads l = contact(s, p);
+  const SurfaceContactResult l = contact(s, p);
   EXPECT_NEAR(p.ax * kMass, kStiffness * dx, 1e-9);
   EXPECT_NEAR(p.az * kMass, -kStiffness * dz, 1e-9);
   EXPECT_EQ(l.particles_in_contact[0] + l.particles_in_contact[1], 2u);
@@ -312,7 +312,7 @@ TEST(SurfaceContact, MomentumIsExchangedExactlyAndFacetSumsMatchNodeSums) {
   Scatter c = scattered();
   const std::size_t n = c.x.size();
   std::vector<double> ax(n, 0.0), ay(n, 0.0), az(n, 0.0);
-  SurfaceLoads l;
+  SurfaceContactResult l;
   snow_sph::surface_contact(c.s, params(), n, c.x.data(), c.y.data(), c.z.data(), c.vx.data(), c.vy.data(),
                             c.vz.data(), c.m.data(), kDt, ax.data(), ay.data(), az.data(), l);
   double px = 0, py = 0, pz = 0, nx = 0, ny = 0, nz = 0;
@@ -336,7 +336,7 @@ TEST(SurfaceContact, ResultDoesNotDependOnTheThreadCount) {
   auto run = [&](int threads) {
     omp_set_num_threads(threads);
     std::vector<double> a(3 * n, 0.0);
-    SurfaceLoads l;
+    SurfaceContactResult l;
     snow_sph::FrictionHistory history;
     for (int call = 0; call < 3; ++call) {  // the last call uses the sticks of the others
       std::fill(a.begin(), a.end(), 0.0);

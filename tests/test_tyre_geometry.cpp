@@ -501,10 +501,10 @@ TEST(ContactSurface, OuterFacetsAndTerrainPressureOnTheRightMeshFacet) {
   std::vector<double> nodal(m.nodes.size(), 0.0);
   const int road_node = m.facets[0].nodes[2];
   nodal[road_node] = 4000.0;
-  TerrainLoads loads;
+  cosim::SurfaceLoads loads;
   const std::uint32_t f1 = 3, f2 = static_cast<std::uint32_t>(surface.facet_count() - 1);
   loads.facets = {f1, f2};
-  loads.facet_pressure_Pa = {70e3, 35e3};
+  loads.pressure_Pa = {70e3, 35e3};
   const std::vector<double> facet_p = facet_contact_pressure_Pa(m, nodal, surface, loads);
   ASSERT_EQ(facet_p.size(), m.facets.size());
   for (std::size_t f = 0; f < m.facets.size(); ++f) {

@@ -1,8 +1,9 @@
 #pragma once
 // The terrain's SurfaceExchange over DDS: takes the tyre's surface mesh once
-// and, each step, the kinematics of the surface near the terrain with the
+// and, each exchange, the kinematics of the surface near the terrain with the
 // friction coefficient the coupler chose per facet; sends back the contact
-// loads on the surface nodes and facets.
+// loads on the surface nodes and facets. It copies the exchange types
+// (cosim/surface_exchange.hpp) to and from their wire topics and checks them.
 #include <memory>
 #include <vector>
 
@@ -15,8 +16,9 @@ class DdsSurfaceExchange final : public SurfaceExchange {
  public:
   explicit DdsSurfaceExchange(cosim::coupling::Session& session);
   double connect(double proposed_dt_s) override;
-  const ContactSurface* surface(std::uint64_t exchange) override;
-  void send_loads(std::uint64_t exchange, const SurfaceLoads& loads) override;
+  const cosim::SurfaceState* surface(std::uint64_t exchange) override;
+  const cosim::SurfaceTopology& topology() const override { return topology_; }
+  void send_loads(const cosim::SurfaceLoads& loads) override;
   void finish(bool failed, const std::string& reason) override;
 
  private:
@@ -28,10 +30,9 @@ class DdsSurfaceExchange final : public SurfaceExchange {
   cosim::transport::SurfaceMesh mesh_;
   cosim::transport::SurfaceKinematics kinematics_;
   cosim::transport::ContactLoads loads_;
-  ContactSurface surface_;
-  std::vector<std::int64_t> compact_of_;  // surface node -> index in surface_ (-1: not sent)
+  cosim::SurfaceTopology topology_;
+  cosim::SurfaceState state_;
   std::uint64_t last_exchange_ = 0;
-  double last_time_s_ = 0.0;
 };
 
 }  // namespace snow_sph

@@ -84,6 +84,9 @@ class SphRun final : public cosim::Participant {
   const cosim::scene::Scene& scene_;
   RunOptions options_;
   SurfaceExchange* port_;
+  ContactSurface surface_;              // of the current exchange
+  std::vector<std::int64_t> compact_scratch_;
+  cosim::SurfaceLoads loads_out_;
   std::unique_ptr<Model> model_;
   std::unique_ptr<Solver> solver_;
   cosim::CsvWriter *energy_csv_ = nullptr, *bodies_csv_ = nullptr, *front_csv_ = nullptr, *probe_csv_ = nullptr,
@@ -190,12 +193,14 @@ double SphRun::initialize(cosim::RunRecord& record) {
 
 bool SphRun::exchange_surface(std::uint64_t exchange) {
   const auto t0 = std::chrono::steady_clock::now();
-  const ContactSurface* surface = port_->surface(exchange);
+  const cosim::SurfaceState* state = port_->surface(exchange);
   exchange_wait_s_ += seconds_since(t0);
-  solver_->contact_surface(surface, exchange);
-  if (!surface) return false;
+  if (state) assemble_contact_surface(port_->topology(), *state, surface_, compact_scratch_);
+  solver_->contact_surface(state ? &surface_ : nullptr, exchange);
+  if (!state) return false;
+  sparse_surface_loads(*state, solver_->surface_loads(), loads_out_);
   const auto t1 = std::chrono::steady_clock::now();
-  port_->send_loads(exchange, solver_->surface_loads());
+  port_->send_loads(loads_out_);
   exchange_wait_s_ += seconds_since(t1);
   exchange_ = exchange;
   return true;
@@ -265,7 +270,7 @@ void SphRun::record_rows(bool force) {
   }
   if (front_csv_) front_csv_->row({t, surge_front(*model_)});
   if (contact_csv_) {
-    const SurfaceLoads& l = solver_->surface_loads();
+    const SurfaceContactResult& l = solver_->surface_loads();
     double area = 0.0, in_contact = 0.0;
     for (double a : l.facet_contact_area_m2) area += a;
     for (auto c : l.particles_in_contact) in_contact += c;

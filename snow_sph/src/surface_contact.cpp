@@ -179,6 +179,50 @@ V3 facet_area_vector(const ContactSurface& s, std::size_t f) {
 
 }  // namespace
 
+void assemble_contact_surface(const cosim::SurfaceTopology& topology, const cosim::SurfaceState& state,
+                              ContactSurface& s, std::vector<std::int64_t>& compact_of) {
+  s.x = state.x_m, s.y = state.y_m, s.z = state.z_m;
+  s.vx = state.vx_mps, s.vy = state.vy_mps, s.vz = state.vz_mps;
+  compact_of.assign(topology.node_count(), -1);
+  for (std::size_t j = 0; j < state.nodes.size(); ++j) compact_of[state.nodes[j]] = static_cast<std::int64_t>(j);
+  s.facet_nodes.clear();
+  for (std::uint32_t f : state.facets)
+    for (int a = 0; a < 4; ++a) {
+      const std::int64_t c = compact_of[topology.facet_nodes[4 * f + a]];
+      if (c < 0)
+        throw cosim::Error("surface of exchange " + std::to_string(state.exchange) + ": facet " + std::to_string(f) +
+                           " has a node that was not sent");
+      s.facet_nodes.push_back(static_cast<std::uint32_t>(c));
+    }
+  s.friction_coefficient = state.friction_coefficient;
+  s.node_mass_kg.clear();
+  if (topology.node_mass_kg.size() == topology.node_count())
+    for (std::uint32_t node : state.nodes) s.node_mass_kg.push_back(topology.node_mass_kg[node]);
+  s.facet_id.assign(state.facets.begin(), state.facets.end());
+}
+
+void sparse_surface_loads(const cosim::SurfaceState& state, const SurfaceContactResult& l, cosim::SurfaceLoads& out) {
+  out.exchange = state.exchange, out.time_s = state.time_s;
+  out.nodes.clear(), out.fx_N.clear(), out.fy_N.clear(), out.fz_N.clear();
+  for (std::size_t j = 0; j < state.nodes.size(); ++j) {
+    if (l.node_fx[j] == 0.0 && l.node_fy[j] == 0.0 && l.node_fz[j] == 0.0) continue;
+    out.nodes.push_back(state.nodes[j]);
+    out.fx_N.push_back(l.node_fx[j]), out.fy_N.push_back(l.node_fy[j]), out.fz_N.push_back(l.node_fz[j]);
+  }
+  out.facets.clear(), out.normal_force_N.clear(), out.tangential_x_N.clear(), out.tangential_y_N.clear();
+  out.tangential_z_N.clear(), out.contact_area_m2.clear(), out.pressure_Pa.clear();
+  for (std::size_t f = 0; f < state.facets.size(); ++f) {
+    if (l.particles_in_contact[f] == 0) continue;
+    out.facets.push_back(state.facets[f]);
+    out.normal_force_N.push_back(l.facet_normal_force_N[f]);
+    out.tangential_x_N.push_back(l.facet_tangential_x_N[f]);
+    out.tangential_y_N.push_back(l.facet_tangential_y_N[f]);
+    out.tangential_z_N.push_back(l.facet_tangential_z_N[f]);
+    out.contact_area_m2.push_back(l.facet_contact_area_m2[f]);
+    out.pressure_Pa.push_back(l.facet_pressure_Pa[f]);
+  }
+}
+
 double held_load_window_limit(const ContactSurface& surface, double stiffness_N_per_m, double spacing_m) {
   const std::size_t n = surface.x.size();
   if (surface.node_mass_kg.size() != n || !(stiffness_N_per_m > 0)) return std::numeric_limits<double>::infinity();
@@ -202,7 +246,7 @@ double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N
 void surface_contact(const ContactSurface& s, const SurfaceContactParameters& params, std::size_t n_particles,
                      const double* x, const double* y, const double* z, const double* vx, const double* vy,
                      const double* vz, const double* mass, double dt, double* ax, double* ay, double* az,
-                     SurfaceLoads& loads, FrictionHistory* history, const std::uint32_t* particle_id) {
+                     SurfaceContactResult& loads, FrictionHistory* history, const std::uint32_t* particle_id) {
   const std::size_t nn = s.x.size(), nf = s.facet_count();
   if (s.facet_nodes.size() != 4 * nf || s.friction_coefficient.size() != nf || s.y.size() != nn ||
       s.z.size() != nn || s.vx.size() != nn || s.vy.size() != nn || s.vz.size() != nn ||
@@ -210,7 +254,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     throw cosim::Error("contact surface: node or facet arrays differ in length");
   for (std::uint32_t n : s.facet_nodes)
     if (n >= nn) throw cosim::Error("contact surface: facet node " + std::to_string(n) + " out of range");
-  loads = SurfaceLoads{};
+  loads = SurfaceContactResult{};
   loads.node_fx.assign(nn, 0.0), loads.node_fy.assign(nn, 0.0), loads.node_fz.assign(nn, 0.0);
   for (auto* v : {&loads.facet_normal_force_N, &loads.facet_tangential_x_N, &loads.facet_tangential_y_N,
                   &loads.facet_tangential_z_N, &loads.facet_contact_area_m2, &loads.facet_pressure_Pa})

@@ -46,9 +46,8 @@ int main(int argc, char** argv) {
       throw cosim::Error(scene_file + ": this scene couples the tyre to an SPH terrain; run it with `cosim run` "
                          "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
     if (coupling.coupled) {
-      const auto& c = scene->message.coupling();
       cosim::coupling::Session session(coupling.session(cosim::transport::Role::tyre, scene->message));
-      tyre_fe::DdsTerrainPort port(session, c.contact_band_m());
+      tyre_fe::DdsTerrainPort port(session);
       tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
       options.terrain = &port;
       try {

@@ -26,14 +26,14 @@ static VtkField facet_pressure(const Model3d& model, const State3d& s) {
 }
 
 std::vector<double> facet_contact_pressure_Pa(const Mesh3D& mesh, const std::vector<double>& nodal_road_pressure_Pa,
-                                              const ContactSurfaceDef& surface, const TerrainLoads& loads) {
+                                              const ContactSurfaceDef& surface, const cosim::SurfaceLoads& loads) {
   const auto& p = nodal_road_pressure_Pa;
   std::vector<double> facet_p;
   facet_p.reserve(mesh.facets.size());
   for (const auto& facet : mesh.facets)
     facet_p.push_back(0.25 * (p[facet.nodes[0]] + p[facet.nodes[1]] + p[facet.nodes[2]] + p[facet.nodes[3]]));
-  for (std::size_t k = 0; k < loads.facets.size() && k < loads.facet_pressure_Pa.size(); ++k)
-    facet_p[surface.mesh_facets.at(loads.facets[k])] += loads.facet_pressure_Pa[k];
+  for (std::size_t k = 0; k < loads.facets.size() && k < loads.pressure_Pa.size(); ++k)
+    facet_p[surface.mesh_facets.at(loads.facets[k])] += loads.pressure_Pa[k];
   return facet_p;
 }
 

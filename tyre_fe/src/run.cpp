@@ -96,10 +96,10 @@ class TyreRun final : public cosim::Participant {
   void end_stage();
   void join_terrain();
   // Forces of the ground on the tyre: the rigid road, or a terrain solver's loads.
-  double ground_fx() const { return s_.road.force_x_N + s_.terrain.loads.total_x_N; }
-  double ground_fy() const { return s_.road.force_y_N + s_.terrain.loads.total_y_N; }
-  double ground_fz() const { return s_.road.force_z_N + s_.terrain.loads.total_z_N; }
-  double ground_area() const { return s_.road.contact_area_m2 + s_.terrain.loads.contact_area_m2; }
+  double ground_fx() const { return s_.road.force_x_N + s_.terrain.load_totals.force_N[0]; }
+  double ground_fy() const { return s_.road.force_y_N + s_.terrain.load_totals.force_N[1]; }
+  double ground_fz() const { return s_.road.force_z_N + s_.terrain.load_totals.force_N[2]; }
+  double ground_area() const { return s_.road.contact_area_m2 + s_.terrain.load_totals.contact_area_m2; }
 
   const cosim::LoadedScene& loaded_;
   const sc::Scene& scene_;
@@ -237,7 +237,8 @@ void TyreRun::step(const RimDrive& drive) {
   const bool window_start = joined_ && terrain.substep == 0;
   if (window_start) {  // exchange, out
     const auto t0 = std::chrono::steady_clock::now();
-    port_->send(terrain.exchange, s_, *model_);
+    surface_near_terrain(terrain.surface, s_, terrain.band_m, terrain.sent);
+    port_->send(terrain.sent, s_.rim);
     commit_window_impulse(terrain);
     exchange_s_ += seconds_since(t0);
   }
@@ -245,6 +246,7 @@ void TyreRun::step(const RimDrive& drive) {
   if (window_start) {  // exchange, in
     const auto t0 = std::chrono::steady_clock::now();
     port_->receive(terrain.exchange, terrain.loads);
+    terrain.load_totals = cosim::totals(terrain.loads);
     exchange_s_ += seconds_since(t0);
   }
   if (joined_) add_terrain_loads(s_);
@@ -334,7 +336,8 @@ void TyreRun::join_terrain() {
   for (double& z : s_.z) z += lift;
   s_.rim.z += lift;
   s_.road.height_m = 0.0;  // heights below are measured from the terrain surface
-  s_.terrain.surface = make_contact_surface(model);
+  s_.terrain.surface = make_contact_surface(model, s_);
+  s_.terrain.band_m = c.contact_band_m();
   if (!options_.quiet)
     std::fprintf(stderr, "[%s] joining the terrain and the coupler (%zu surface facets)\n", scene_.name().c_str(),
                  s_.terrain.surface.facet_count());

@@ -227,14 +227,15 @@ void commit_window_impulse(TerrainCoupling& t) {
 
 void add_terrain_loads(State3d& s) {
   TerrainCoupling& t = s.terrain;
-  const TerrainLoads& l = t.loads;
-  for (std::size_t k = 0; k < l.surface_nodes.size(); ++k) {
-    const int i = t.surface.node_ids[l.surface_nodes[k]];
+  const cosim::SurfaceLoads& l = t.loads;
+  for (std::size_t k = 0; k < l.nodes.size(); ++k) {
+    const int i = t.surface.node_ids[l.nodes[k]];
     s.fx[i] += l.fx_N[k], s.fy[i] += l.fy_N[k], s.fz[i] += l.fz_N[k];
     s.contact_fx[i] += l.fx_N[k], s.contact_fy[i] += l.fy_N[k], s.contact_fz[i] += l.fz_N[k];
   }
-  t.window_impulse_Ns[0] += s.dt_s * l.total_x_N, t.window_impulse_Ns[1] += s.dt_s * l.total_y_N;
-  t.window_impulse_Ns[2] += s.dt_s * l.total_z_N;
+  const auto& total = t.load_totals.force_N;
+  t.window_impulse_Ns[0] += s.dt_s * total[0], t.window_impulse_Ns[1] += s.dt_s * total[1];
+  t.window_impulse_Ns[2] += s.dt_s * total[2];
   if (++t.substep == t.substeps) t.substep = 0, ++t.exchange;
 }
 

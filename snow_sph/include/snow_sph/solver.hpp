@@ -60,7 +60,7 @@ class Solver {
   void couple(const SurfaceContactParameters& parameters);
   // The stable step of the penalty contact with a coupled surface (0: not coupled).
   double surface_contact_limit_dt() const;
-  const SurfaceLoads& surface_loads() const { return surface_loads_; }
+  const SurfaceContactResult& surface_loads() const { return surface_loads_; }
   // Exchange n (n = 0 before initialise(), else after the n-th advance()): the
   // contact of the surface at t_n with the particles at t_n, into their
   // accelerations and surface_loads(); null: the surface's owner ended the run.
@@ -149,7 +149,7 @@ class Solver {
   bool coupled_ = false;
   double step_dt_ = 0.0;  // the step advance() took (complete_step() and the contact use it)
   SurfaceContactParameters surface_params_;
-  SurfaceLoads surface_loads_;
+  SurfaceContactResult surface_loads_;
   FrictionHistory friction_history_;  // elastic sticks, keyed by the stable particle id
   // Accelerations before the surface contact, then the surface's force per
   // particle [N] (its work over the next kick).

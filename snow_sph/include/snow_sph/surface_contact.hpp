@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "cosim/surface_exchange.hpp"
+
 namespace snow_sph {
 
 // The surface another solver owns (world frame, SI): nodes and quad facets.
@@ -24,6 +26,14 @@ struct ContactSurface {
   std::vector<double> node_mass_kg;
   std::size_t facet_count() const { return facet_nodes.size() / 4; }
 };
+
+// The contact surface of one exchange from the owner's topology and the state it
+// sent (cosim/surface_exchange.hpp): the nodes sent, the facets sent with their
+// corners renumbered to those nodes, their friction, ids and node masses.
+// Throws cosim::Error if a facet has a node that was not sent. `scratch` is
+// reused from call to call.
+void assemble_contact_surface(const cosim::SurfaceTopology& topology, const cosim::SurfaceState& state,
+                              ContactSurface& out, std::vector<std::int64_t>& scratch);
 
 // The largest coupling window over which the surface's owner may hold this
 // contact's loads on its nodes (multi-rate coupling; docs/coupling.md,
@@ -50,7 +60,7 @@ struct FrictionHistory {
 };
 
 // What the contact did in one step.
-struct SurfaceLoads {
+struct SurfaceContactResult {
   // Per surface node: force ON THE SURFACE (the reaction of the particles) [N].
   std::vector<double> node_fx, node_fy, node_fz;
   // Per facet: normal force on the surface, compressive > 0 (the particles push
@@ -64,6 +74,11 @@ struct SurfaceLoads {
   double damping_dissipation_J = 0;   // this step: contact damping
   double elastic_energy_J = 0;        // in the penalty springs now: sum k delta^2 / 2
 };
+
+// The sparse loads that go back to the surface's owner: the nodes and facets of
+// `state` that carry any, in the owner's numbering, with the state's exchange and time.
+void sparse_surface_loads(const cosim::SurfaceState& state, const SurfaceContactResult& result,
+                          cosim::SurfaceLoads& out);
 
 struct SurfaceContactParameters {
   double particle_radius_m = 0;  // half the particle spacing: contact below this distance
@@ -101,7 +116,7 @@ struct SurfaceContactParameters {
 void surface_contact(const ContactSurface& surface, const SurfaceContactParameters& params,
                      std::size_t n_particles, const double* x, const double* y, const double* z,
                      const double* vx, const double* vy, const double* vz, const double* mass,
-                     double dt, double* ax, double* ay, double* az, SurfaceLoads& loads,
+                     double dt, double* ax, double* ay, double* az, SurfaceContactResult& loads,
                      FrictionHistory* history = nullptr, const std::uint32_t* particle_id = nullptr);
 
 // Central-difference limit of a penalty spring on the lightest particle: 2 sqrt(m / k).

@@ -1,7 +1,8 @@
 #pragma once
 // The terrain's side of a coupling with a solver that owns a contact surface
-// (the tyre), without any transport: the solver asks the port for the surface
-// of each step and hands back the loads it computed (surface_contact.hpp).
+// (the tyre), without any transport: the run asks the port for the surface
+// of each exchange and hands back the loads the solver computed, both in the
+// types the tyre's side uses too (cosim/surface_exchange.hpp).
 // What is behind the port (DDS in the coupled executable, a test double in
 // tests) is not the solver's business.
 //
@@ -21,10 +22,12 @@ class SurfaceExchange {
   virtual ~SurfaceExchange() = default;
   // Once, before initialise(): this solver's stable step in, the common step out.
   virtual double connect(double proposed_dt_s) = 0;
-  // The surface at exchange n; null when the owner of the surface ended the run.
-  virtual const ContactSurface* surface(std::uint64_t exchange) = 0;
-  // The loads computed at exchange n.
-  virtual void send_loads(std::uint64_t exchange, const SurfaceLoads& loads) = 0;
+  // The surface's state at exchange n; null when the owner of the surface ended the run.
+  virtual const cosim::SurfaceState* surface(std::uint64_t exchange) = 0;
+  // The surface's topology, once the first surface() has returned.
+  virtual const cosim::SurfaceTopology& topology() const = 0;
+  // The loads computed at the exchange they name.
+  virtual void send_loads(const cosim::SurfaceLoads& loads) = 0;
   // End of the run: normal stop (failed = false) or failure with a reason.
   virtual void finish(bool failed, const std::string& reason) = 0;
 };

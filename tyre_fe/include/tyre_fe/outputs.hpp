@@ -42,7 +42,7 @@ std::vector<double> contact_pressure_Pa(const Model3d& model, const State3d& s);
 // pressure, plus the terrain's pressure on the facets it reports in a coupled
 // run (surface facet -> mesh facet through surface.mesh_facets).
 std::vector<double> facet_contact_pressure_Pa(const Mesh3D& mesh, const std::vector<double>& nodal_road_pressure_Pa,
-                                              const ContactSurfaceDef& surface, const TerrainLoads& loads);
+                                              const ContactSurfaceDef& surface, const cosim::SurfaceLoads& loads);
 
 // footprint.csv (x, y, contact pressure of the nodes in contact) and footprint.png.
 void write_footprint(const std::string& folder, const Model3d& model, const State3d& s);

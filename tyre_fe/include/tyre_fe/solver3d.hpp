@@ -66,7 +66,10 @@ struct TerrainCoupling {
   std::uint64_t exchange = 0;   // windows exchanged
   int substeps = 1;             // tyre steps per coupling window
   int substep = 0;              // position in the current window (0: its start)
-  TerrainLoads loads;           // of the current window
+  double band_m = 0.1;          // facets with a node below this height are sent
+  cosim::SurfaceState sent;     // the surface sent at the current window's start
+  cosim::SurfaceLoads loads;    // of the current window
+  cosim::SurfaceLoadTotals load_totals;
   // Impulse of the terrain's loads on the tyre [N s]: the held loads times each
   // sub-step, over the windows completed and followed by the next exchange
   // (the terrain books the same windows), and over the window under way.

@@ -14,38 +14,32 @@
 #include <string>
 #include <vector>
 
+#include "cosim/surface_exchange.hpp"
 #include "tyre_fe/model3d.hpp"
 
 namespace tyre_fe {
 
 struct State3d;
+struct RimState;
 
 // The outer surface that can touch a terrain: every tagged facet except the
-// inner liner and the rim faces. Surface node k is model node node_ids[k];
-// facet f has surface nodes facet_nodes[4f..4f+3] (outward right-hand normal).
-struct ContactSurfaceDef {
+// inner liner and the rim faces, as the topology every participant sees
+// (cosim/surface_exchange.hpp) plus where it sits in the tyre's mesh. Surface
+// node k is model node node_ids[k]; surface facet f is mesh.facets[mesh_facets[f]].
+struct ContactSurfaceDef : cosim::SurfaceTopology {
   std::vector<int> node_ids;
-  std::vector<std::uint32_t> facet_nodes;
-  std::vector<SurfaceTag> facet_tags;
-  std::vector<int> mesh_facets;  // surface facet f is mesh.facets[mesh_facets[f]]
-  std::vector<double> node_mass_kg;  // lumped mass of surface node k (empty: not known)
-  std::size_t facet_count() const { return facet_tags.size(); }
+  std::vector<int> mesh_facets;
 };
+// Positions from the mesh's reference nodes, no node masses.
 ContactSurfaceDef make_contact_surface(const Mesh3D& mesh);
-// With the lumped masses of the model's nodes.
-ContactSurfaceDef make_contact_surface(const Model3d& model);
+// With the lumped masses of the model's nodes and the positions of state s.
+ContactSurfaceDef make_contact_surface(const Model3d& model, const State3d& s);
 
-// Forces of the terrain on surface nodes (sparse, surface-node indices).
-struct TerrainLoads {
-  std::vector<std::uint32_t> surface_nodes;
-  std::vector<double> fx_N, fy_N, fz_N;
-  double total_x_N = 0.0, total_y_N = 0.0, total_z_N = 0.0;
-  double contact_area_m2 = 0.0;  // as the terrain counts it
-  // Contact pressure of the contacted facets (surface-facet indices), for the
-  // tyre's own outputs; the forces above are what the step uses.
-  std::vector<std::uint32_t> facets;
-  std::vector<double> facet_pressure_Pa;
-};
+// The part of the surface near the terrain (its undisturbed surface is z = 0)
+// at state s: the facets with a node below band_m, and their nodes, with the
+// exchange and time of s's terrain coupling.
+void surface_near_terrain(const ContactSurfaceDef& surface, const State3d& s, double band_m,
+                          cosim::SurfaceState& out);
 
 class TerrainPort {
  public:
@@ -53,10 +47,10 @@ class TerrainPort {
   // Once, before the first coupled step: offers the surface and this solver's
   // stable step; returns the common step every participant will use.
   virtual double connect(const ContactSurfaceDef& surface, double proposed_dt_s) = 0;
-  // Coupled step `exchange` (0, 1, ...) at state s: the surface kinematics and the rim.
-  virtual void send(std::uint64_t exchange, const State3d& s, const Model3d& model) = 0;
-  // The loads of the same step; throws cosim::Error if the terrain is gone.
-  virtual void receive(std::uint64_t exchange, TerrainLoads& loads) = 0;
+  // The surface near the terrain at exchange surface.exchange (0, 1, ...), and the rim.
+  virtual void send(const cosim::SurfaceState& surface, const RimState& rim) = 0;
+  // The loads of the same exchange; throws cosim::Error if the terrain is gone.
+  virtual void receive(std::uint64_t exchange, cosim::SurfaceLoads& loads) = 0;
   // End of the run: normal stop (failed = false) or failure with a reason.
   virtual void finish(bool failed, const std::string& reason) = 0;
 };

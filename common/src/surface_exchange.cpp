@@ -1,0 +1,70 @@
+#include "cosim/surface_exchange.hpp"
+
+#include "cosim/error.hpp"
+
+namespace cosim {
+namespace {
+
+void check_length(std::size_t length, std::size_t expected, const std::string& what, const char* field,
+                  const char* per) {
+  if (length != expected)
+    throw Error(what + ": " + field + " has " + std::to_string(length) + " entries for " + std::to_string(expected) +
+                " " + per);
+}
+
+void check_range(const std::vector<std::uint32_t>& numbers, std::size_t count, const std::string& what,
+                 const char* kind) {
+  for (std::uint32_t n : numbers)
+    if (n >= count)
+      throw Error(what + ": " + kind + " " + std::to_string(n) + " does not exist (" + std::to_string(count) + " " +
+                  kind + "s in the surface)");
+}
+
+}  // namespace
+
+SurfaceLoadTotals totals(const SurfaceLoads& loads) {
+  SurfaceLoadTotals t;
+  for (std::size_t k = 0; k < loads.nodes.size(); ++k)
+    t.force_N[0] += loads.fx_N[k], t.force_N[1] += loads.fy_N[k], t.force_N[2] += loads.fz_N[k];
+  for (double a : loads.contact_area_m2) t.contact_area_m2 += a;
+  return t;
+}
+
+void check_surface_topology(const SurfaceTopology& t, const std::string& what) {
+  const std::size_t n = t.node_count();
+  check_length(t.y_m.size(), n, what, "y_m", "nodes");
+  check_length(t.z_m.size(), n, what, "z_m", "nodes");
+  if (!t.node_mass_kg.empty()) check_length(t.node_mass_kg.size(), n, what, "node_mass_kg", "nodes");
+  check_length(t.facet_nodes.size(), 4 * t.facet_count(), what, "facet_nodes", "(4 per facet) facet corners");
+  check_range(t.facet_nodes, n, what, "surface node");
+}
+
+void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology, const std::string& what) {
+  const std::size_t n = s.nodes.size(), facets = s.facets.size();
+  check_length(s.x_m.size(), n, what, "x_m", "nodes");
+  check_length(s.y_m.size(), n, what, "y_m", "nodes");
+  check_length(s.z_m.size(), n, what, "z_m", "nodes");
+  check_length(s.vx_mps.size(), n, what, "vx_mps", "nodes");
+  check_length(s.vy_mps.size(), n, what, "vy_mps", "nodes");
+  check_length(s.vz_mps.size(), n, what, "vz_mps", "nodes");
+  if (!s.friction_coefficient.empty()) check_length(s.friction_coefficient.size(), facets, what, "friction_coefficient", "facets");
+  check_range(s.nodes, topology.node_count(), what, "surface node");
+  check_range(s.facets, topology.facet_count(), what, "surface facet");
+}
+
+void check_surface_loads(const SurfaceLoads& l, const SurfaceTopology& topology, const std::string& what) {
+  const std::size_t n = l.nodes.size(), facets = l.facets.size();
+  check_length(l.fx_N.size(), n, what, "fx_N", "nodes");
+  check_length(l.fy_N.size(), n, what, "fy_N", "nodes");
+  check_length(l.fz_N.size(), n, what, "fz_N", "nodes");
+  check_length(l.normal_force_N.size(), facets, what, "normal_force_N", "facets");
+  check_length(l.tangential_x_N.size(), facets, what, "tangential_x_N", "facets");
+  check_length(l.tangential_y_N.size(), facets, what, "tangential_y_N", "facets");
+  check_length(l.tangential_z_N.size(), facets, what, "tangential_z_N", "facets");
+  check_length(l.contact_area_m2.size(), facets, what, "contact_area_m2", "facets");
+  check_length(l.pressure_Pa.size(), facets, what, "pressure_Pa", "facets");
+  check_range(l.nodes, topology.node_count(), what, "surface node");
+  check_range(l.facets, topology.facet_count(), what, "surface facet");
+}
+
+}  // namespace cosim

@@ -1,0 +1,175 @@
+// The exchange between the tyre and the terrain without any transport
+// (cosim/surface_exchange.hpp): the tyre's side selects the surface near the
+// terrain (tyre_fe::surface_near_terrain), the terrain's side rebuilds its
+// contact surface from it (snow_sph::assemble_contact_surface) and sends back
+// sparse loads (snow_sph::sparse_surface_loads), which the tyre's side checks
+// (cosim::check_surface_loads). What is checked is the bookkeeping: the terrain
+// sees each facet where the tyre's nodes are, and each load comes back to the
+// tyre node it was computed for. The DDS ports copy these types field by field
+// (test_transport_roundtrip covers the wire).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cosim/error.hpp"
+#include "cosim/surface_exchange.hpp"
+#include "snow_sph/surface_contact.hpp"
+#include "tyre_fe/solver3d.hpp"
+#include "tyre_fe/terrain_port.hpp"
+
+namespace {
+
+using cosim::FacetTag;
+
+// A strip of three quads along x rising from 5 mm into the terrain (its surface
+// is z = 0) to 0.2 m above it, plus an inner-liner quad that is never offered.
+// The surface numbers its nodes in facet order, not the mesh's.
+tyre_fe::Mesh3D strip() {
+  tyre_fe::Mesh3D mesh;
+  const double z[4] = {-0.005, 0.02, 0.12, 0.2};
+  for (int i = 0; i < 4; ++i) {
+    mesh.nodes.push_back({0.1 * i, 0.0, z[i]});
+    mesh.nodes.push_back({0.1 * i, 0.1, z[i]});
+  }
+  mesh.nodes.push_back({0.0, 0.0, 1.0});  // 8..11: the inner liner, far above
+  mesh.nodes.push_back({0.1, 0.0, 1.0});
+  mesh.nodes.push_back({0.1, 0.1, 1.0});
+  mesh.nodes.push_back({0.0, 0.1, 1.0});
+  mesh.facets.push_back({{8, 9, 10, 11}, FacetTag::inner_liner, 0});
+  mesh.facets.push_back({{0, 2, 3, 1}, FacetTag::tread_top, 0});
+  mesh.facets.push_back({{2, 4, 5, 3}, FacetTag::groove_wall, 0});
+  mesh.facets.push_back({{4, 6, 7, 5}, FacetTag::sidewall, 0});
+  return mesh;
+}
+
+tyre_fe::State3d state_of(const tyre_fe::Mesh3D& mesh) {
+  tyre_fe::State3d s;
+  for (std::size_t i = 0; i < mesh.nodes.size(); ++i) {
+    s.x.push_back(mesh.nodes[i][0]), s.y.push_back(mesh.nodes[i][1]), s.z.push_back(mesh.nodes[i][2]);
+    s.vx.push_back(1.0 + i), s.vy.push_back(0.0), s.vz.push_back(-0.1 * i);
+  }
+  s.time_s = 0.25;
+  s.terrain.exchange = 7;
+  return s;
+}
+
+TEST(SurfaceExchange, TheTerrainSeesTheFacetsNearItWhereTheTyreHasThem) {
+  const tyre_fe::Mesh3D mesh = strip();
+  const tyre_fe::ContactSurfaceDef surface = tyre_fe::make_contact_surface(mesh);
+  ASSERT_EQ(surface.facet_count(), 3u);  // the inner liner is not offered
+  ASSERT_EQ(surface.node_count(), 8u);
+  const tyre_fe::State3d s = state_of(mesh);
+
+  cosim::SurfaceState sent;
+  tyre_fe::surface_near_terrain(surface, s, 0.05, sent);  // facets with a node below 5 cm
+  EXPECT_EQ(sent.exchange, 7u);
+  EXPECT_EQ(sent.time_s, 0.25);
+  ASSERT_EQ(sent.facets.size(), 2u);  // the tread top and the groove wall (an edge at 2 cm), not the sidewall
+  EXPECT_EQ(sent.nodes.size(), 6u);
+  EXPECT_NO_THROW(cosim::check_surface_state(sent, surface, "sent"));
+
+  sent.friction_coefficient = {0.45, 0.3};  // the coupler's choice
+  snow_sph::ContactSurface terrain_view;
+  std::vector<std::int64_t> scratch;
+  snow_sph::assemble_contact_surface(surface, sent, terrain_view, scratch);
+  ASSERT_EQ(terrain_view.facet_count(), 2u);
+  for (std::size_t f = 0; f < 2; ++f) {
+    const auto& mesh_facet = mesh.facets[surface.mesh_facets[sent.facets[f]]];
+    for (int a = 0; a < 4; ++a) {
+      const std::uint32_t c = terrain_view.facet_nodes[4 * f + a];
+      const int model_node = mesh_facet.nodes[a];
+      EXPECT_EQ(terrain_view.x[c], s.x[model_node]);
+      EXPECT_EQ(terrain_view.z[c], s.z[model_node]);
+      EXPECT_EQ(terrain_view.vx[c], s.vx[model_node]);
+    }
+    EXPECT_EQ(terrain_view.friction_coefficient[f], sent.friction_coefficient[f]);
+    EXPECT_EQ(terrain_view.facet_id[f], sent.facets[f]);
+  }
+}
+
+TEST(SurfaceExchange, EachLoadComesBackToTheNodeItWasComputedFor) {
+  const tyre_fe::Mesh3D mesh = strip();
+  const tyre_fe::ContactSurfaceDef surface = tyre_fe::make_contact_surface(mesh);
+  const tyre_fe::State3d s = state_of(mesh);
+  cosim::SurfaceState sent;
+  tyre_fe::surface_near_terrain(surface, s, 0.05, sent);
+  sent.friction_coefficient.assign(sent.facets.size(), 0.3);
+  snow_sph::ContactSurface terrain_view;
+  std::vector<std::int64_t> scratch;
+  snow_sph::assemble_contact_surface(surface, sent, terrain_view, scratch);
+
+  // The terrain's result: a force on each node equal to its position (so that the
+  // tyre can tell where it came from), none on the last node, contact on facet 0 only.
+  snow_sph::SurfaceContactResult result;
+  const std::size_t n = terrain_view.x.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    const bool loaded = j + 1 < n;
+    result.node_fx.push_back(loaded ? terrain_view.x[j] : 0.0);
+    result.node_fy.push_back(loaded ? terrain_view.y[j] : 0.0);
+    result.node_fz.push_back(loaded ? terrain_view.z[j] + 10.0 : 0.0);
+  }
+  result.particles_in_contact = {3, 0};
+  result.facet_normal_force_N = {12.0, 0.0};
+  result.facet_tangential_x_N = {1.0, 0.0}, result.facet_tangential_y_N = {0.0, 0.0};
+  result.facet_tangential_z_N = {0.0, 0.0};
+  result.facet_contact_area_m2 = {0.01, 0.0}, result.facet_pressure_Pa = {1200.0, 0.0};
+
+  cosim::SurfaceLoads loads;
+  snow_sph::sparse_surface_loads(sent, result, loads);
+  EXPECT_EQ(loads.exchange, 7u);
+  ASSERT_EQ(loads.nodes.size(), n - 1);  // the unloaded node is left out
+  ASSERT_EQ(loads.facets.size(), 1u);
+  EXPECT_EQ(loads.facets[0], sent.facets[0]);
+  EXPECT_NO_THROW(cosim::check_surface_loads(loads, surface, "loads"));
+  for (std::size_t k = 0; k < loads.nodes.size(); ++k) {
+    const int model_node = surface.node_ids[loads.nodes[k]];
+    EXPECT_EQ(loads.fx_N[k], s.x[model_node]);
+    EXPECT_EQ(loads.fy_N[k], s.y[model_node]);
+    EXPECT_EQ(loads.fz_N[k], s.z[model_node] + 10.0);
+  }
+  const cosim::SurfaceLoadTotals t = cosim::totals(loads);
+  double fz = 0.0;
+  for (double f : loads.fz_N) fz += f;
+  EXPECT_EQ(t.force_N[2], fz);
+  EXPECT_EQ(t.contact_area_m2, 0.01);
+}
+
+TEST(SurfaceExchange, InconsistentSamplesNameTheSampleAndTheField) {
+  const tyre_fe::ContactSurfaceDef surface = tyre_fe::make_contact_surface(strip());
+  cosim::SurfaceLoads loads;
+  loads.nodes = {0, 1};
+  loads.fx_N = {1.0};
+  loads.fy_N = loads.fz_N = {1.0, 2.0};
+  try {
+    cosim::check_surface_loads(loads, surface, "ContactLoads of step 3");
+    FAIL() << "a short fx_N was accepted";
+  } catch (const cosim::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ContactLoads of step 3: fx_N has 1 entries for 2 nodes"), std::string::npos) << e.what();
+  }
+  loads.fx_N = {1.0, 2.0};
+  loads.nodes = {0, 8};
+  try {
+    cosim::check_surface_loads(loads, surface, "ContactLoads of step 3");
+    FAIL() << "a node outside the surface was accepted";
+  } catch (const cosim::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("surface node 8 does not exist (8 surface nodes"), std::string::npos) << e.what();
+  }
+
+  cosim::SurfaceState state;
+  state.exchange = 4;
+  state.nodes = {0, 1, 2};  // facet 0 of the surface needs four nodes
+  state.x_m = state.y_m = state.z_m = state.vx_mps = state.vy_mps = state.vz_mps = {0.0, 0.0, 0.0};
+  state.facets = {0};
+  state.friction_coefficient = {0.3};
+  snow_sph::ContactSurface terrain_view;
+  std::vector<std::int64_t> scratch;
+  try {
+    snow_sph::assemble_contact_surface(surface, state, terrain_view, scratch);
+    FAIL() << "a facet with a node not sent was accepted";
+  } catch (const cosim::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("surface of exchange 4: facet 0 has a node that was not sent"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
