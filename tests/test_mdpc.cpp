@@ -531,3 +531,79 @@ TEST(Mdpc, BadParametersThrow) {
   expect_throw("initial_cap_volumetric_plastic_strain",
                [](MdpcParameters& m) { m.initial_cap_volumetric_plastic_strain = INFINITY; });
 }
+
+// Drained triaxial compression (sigma_2 = sigma_3 held, axial strain increased)
+// against the Mohr-Coulomb strength it is matched to, a closed form independent of
+// the Drucker-Prager code: sigma_1 = sigma_3 (1 + sin phi) / (1 - sin phi)
+// + 2 c cos phi / (1 - sin phi) (compression positive). The soft snow's cone
+// (Table 3.1: beta = 22.538 deg, d = 5 kPa) is the plane-strain match of phi = 14.0
+// deg, c = 3.0 kPa; re-matched in triaxial compression (tan beta = 6 sin phi /
+// (3 - sin phi), d = 6 c cos phi / (3 - sin phi), as in
+// configs/materials/snow_soft_triaxial.textproto) the update must fail at the
+// Mohr-Coulomb stress. The snow is first compacted to 50 kPa and unloaded to the
+// confining pressure, so that the path meets the cone well before the cap.
+namespace {
+
+struct Triaxial {
+  double confining_Pa, peak_q_Pa;
+};
+
+Triaxial drained_triaxial(const MdpcParameters& m, double confining_Pa) {
+  Mat3 s = Mat3::Zero();
+  double eps = m.initial_cap_volumetric_plastic_strain;
+  hydro_to(m, s, eps, 50e3, 1e-4);
+  hydro_to(m, s, eps, confining_Pa, 1e-5);
+  const double lateral = s(1, 1);  // held (tension positive)
+  const double K = m.bulk_modulus_Pa(), G = m.shear_modulus_Pa();
+  const double lateral_stiffness = 2.0 * (K + G / 3.0);  // d sigma_22 / d (eps_22 = eps_33), elastic
+  double peak = 0.0;
+  for (int i = 0; i < 3000; ++i) {
+    const Mat3 s0 = s;
+    const double e0 = eps;
+    // Secant iteration on the lateral strain increment for sigma_22 = sigma_33 = lateral.
+    double x0 = 0.0, f0 = 0.0, x1 = 0.0;
+    for (int it = 0; it < 60; ++it) {
+      Mat3 de = Mat3::Zero();
+      de(0, 0) = -1e-5, de(1, 1) = de(2, 2) = x1;
+      s = s0, eps = e0;
+      snow_sph::mdpc_update(m, de, s, eps);
+      const double f1 = s(1, 1) - lateral;
+      if (std::fabs(f1) <= 1e-10 * confining_Pa) break;
+      const double slope = (it == 0 || x1 == x0) ? lateral_stiffness : (f1 - f0) / (x1 - x0);
+      x0 = x1, f0 = f1;
+      x1 -= f1 / slope;
+    }
+    peak = std::max(peak, s(1, 1) - s(0, 0));
+  }
+  return {-lateral, peak};
+}
+
+}  // namespace
+
+TEST(Mdpc, DrainedTriaxialCompressionFailsAtTheMohrCoulombStressItIsMatchedTo) {
+  MdpcParameters m = load_snow("snow_mdpc_soft.csv").prm;
+  // phi and c of Table 3.1's cone, inverting Abaqus's plane-strain match.
+  const double T = std::tan(m.friction_angle_rad);
+  const double tan_phi = 3.0 * T / std::sqrt(27.0 - 12.0 * T * T);
+  const double c = m.cohesion_Pa * std::sqrt(9.0 + 12.0 * tan_phi * tan_phi) / (3.0 * std::sqrt(3.0));
+  const double sin_phi = std::sin(std::atan(tan_phi)), cos_phi = std::cos(std::atan(tan_phi));
+  EXPECT_NEAR(std::atan(tan_phi) * 180.0 / M_PI, 14.0, 0.01);  // the thesis's snow: phi 14 deg,
+  EXPECT_NEAR(c, 3000.0, 10.0);                               // c 3 kPa (to its 3 digits)
+  const double plane_strain_beta = m.friction_angle_rad, plane_strain_d = m.cohesion_Pa;
+  m.friction_angle_rad = std::atan(6.0 * sin_phi / (3.0 - sin_phi));
+  m.cohesion_Pa = 6.0 * c * cos_phi / (3.0 - sin_phi);
+  for (double confining : {5e3, 10e3, 20e3}) {
+    const Triaxial t = drained_triaxial(m, confining);
+    const double sigma1 = t.confining_Pa * (1.0 + sin_phi) / (1.0 - sin_phi) + 2.0 * c * cos_phi / (1.0 - sin_phi);
+    // The lateral stress is held to 1e-10 and the return map lands on the cone to
+    // 1e-10 (kOnSurfaceRelTol): 1e-8 of the deviator is rounding, not model.
+    EXPECT_NEAR(t.peak_q_Pa, sigma1 - t.confining_Pa, 1e-8 * (sigma1 - t.confining_Pa)) << "confining " << confining;
+    // Table 3.1's own cone is weaker in triaxial compression (phi 11.2 deg, c 2.38 kPa).
+    MdpcParameters table = m;
+    table.friction_angle_rad = plane_strain_beta, table.cohesion_Pa = plane_strain_d;
+    const Triaxial weaker = drained_triaxial(table, confining);
+    std::printf("[triaxial, sigma_3 %.0f Pa] Mohr-Coulomb q_f %.1f Pa; triaxial-matched cone %.1f; Table 3.1 cone %.1f (%.1f %%)\n",
+                t.confining_Pa, sigma1 - t.confining_Pa, t.peak_q_Pa, weaker.peak_q_Pa,
+                100.0 * (weaker.peak_q_Pa / (sigma1 - t.confining_Pa) - 1.0));
+  }
+}

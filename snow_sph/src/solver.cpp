@@ -11,6 +11,7 @@
 #include "cosim/penalty_contact.hpp"
 #include "cosim/ramp.hpp"
 #include "snow_sph/boundaries.hpp"
+#include "snow_sph/cylinder_contact.hpp"
 
 namespace snow_sph {
 
@@ -458,15 +459,9 @@ void Solver::compute_contact(double dt) {
     std::fill(contact_fz_.begin(), contact_fz_.end(), 0.0);
     std::fill(contact_dissipation_.begin(), contact_dissipation_.end(), 0.0);
     cosim::parallel_for("sph.contact", p.n_real, [&](std::size_t i) {
-      const double dx = p.x[i] - b.x, dy = p.y[i] - b.y;
-      const double rr = std::sqrt(dx * dx + dy * dy);
-      const double zb = b.z, zt = b.z + b.thickness;
-      if (rr >= b.radius + rc || p.z[i] <= zb - rc || p.z[i] >= zt + rc) return;
-      const double d_bottom = p.z[i] - (zb - rc), d_top = (zt + rc) - p.z[i];
-      const double d_side = b.radius + rc - rr;
-      double nx = 0, ny = 0, nz = -1, depth = d_bottom;
-      if (d_top < depth) nz = 1, depth = d_top;
-      if (d_side < depth && rr > 0) nx = dx / rr, ny = dy / rr, nz = 0, depth = d_side;
+      const CylinderContact c = cylinder_contact(p.x[i] - b.x, p.y[i] - b.y, p.z[i], b.radius, b.z, b.z + b.thickness, rc);
+      if (!(c.depth > 0.0)) return;
+      const double nx = c.nx, ny = c.ny, nz = c.nz, depth = c.depth;
       const double m = p.mass[i];
       const double wx = p.vx[i], wy = p.vy[i], wz = p.vz[i] - b.vz;  // relative velocity
       const double vn = wx * nx + wy * ny + wz * nz;
