@@ -242,12 +242,22 @@ void SphRun::output(cosim::RunRecord&) {
 void SphRun::write_frame() {
   const Particles& p = model_->particles;
   const std::size_t n = p.n_real;
-  std::vector<double> id(p.id.begin(), p.id.begin() + n), mat(n);
-  for (std::size_t i = 0; i < n; ++i) mat[i] = p.material[i];
+  std::vector<double> id(p.id.begin(), p.id.begin() + n), mat(n), von_mises(n), cap_pressure(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    mat[i] = p.material[i];
+    von_mises[i] = von_mises_stress_Pa(p, i);
+    // The cap's hydrostatic yield pressure p_b(eps_vol_pl): how far the snow has
+    // been compacted (Abaqus 23.3.2); 0 for water.
+    const MaterialModel& material = model_->materials[p.material[i]];
+    cap_pressure[i] = material.kind == MaterialModel::Kind::snow
+                          ? material.mdpc.cap_hydrostatic_yield_Pa(p.eps_vol_pl[i]) : 0.0;
+  }
   vtk_->write(solver_->time(), n, p.x.data(), p.y.data(), p.z.data(),
               {{"density_kg_per_m3", p.density.data()},
                {"pressure_Pa", p.pressure.data()},
+               {"von_mises_stress_Pa", von_mises.data()},
                {"volumetric_plastic_strain", p.eps_vol_pl.data()},
+               {"cap_hydrostatic_yield_pressure_Pa", cap_pressure.data()},
                {"material", mat.data()},
                {"id", id.data()}},
               {{"velocity_m_per_s", p.vx.data(), p.vy.data(), p.vz.data()}});

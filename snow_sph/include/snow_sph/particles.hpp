@@ -54,4 +54,7 @@ struct Particles {
   void permute_real(const std::vector<std::uint32_t>& order);
 };
 
+// Von Mises equivalent stress q = sqrt(3/2 s:s) of particle i (s the deviator).
+double von_mises_stress_Pa(const Particles& p, std::size_t i);
+
 }  // namespace snow_sph
