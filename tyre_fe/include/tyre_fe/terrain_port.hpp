@@ -3,13 +3,14 @@
 // the contact surface the tyre offers (nodes, quad facets, tags), the loads the
 // terrain returns, and the port through which the step loop exchanges them.
 // tyre_fe's library never knows what is behind the port (DDS in the
-// coupled executable, a test double in tests).
+// coupled executable); what crosses it are the exchange types both solvers
+// share (cosim/surface_exchange.hpp).
 //
 // Timing (explicit central difference, Belytschko et al. 2000 box 6.1): at the
-// start of coupled step n the tyre sends its surface at t_n (positions x^n,
+// start of coupling window n the tyre sends its surface at t_n (positions x^n,
 // velocities v^{n-1/2}), then computes its element forces while the terrain
 // works, then receives the contact loads of t_n and adds them to the nodal
-// forces of the same step. Both solvers advance with one common step.
+// forces of every sub-step of the window (docs/coupling.md).
 #include <cstdint>
 #include <string>
 #include <vector>
