@@ -67,6 +67,13 @@ TEST(SurfaceExchange, TheTerrainSeesTheFacetsNearItWhereTheTyreHasThem) {
   ASSERT_EQ(sent.facets.size(), 2u);  // the tread top and the groove wall (an edge at 2 cm), not the sidewall
   EXPECT_EQ(sent.nodes.size(), 6u);
   EXPECT_NO_THROW(cosim::check_surface_state(sent, surface, "sent"));
+  try {  // before the coupler has decided friction, the terrain must refuse it
+    cosim::check_surface_state(sent, surface, "SurfaceKinematics of step 7", /*friction_required=*/true);
+    FAIL() << "a state without friction was accepted by the terrain's check";
+  } catch (const cosim::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("SurfaceKinematics of step 7: friction_coefficient has 0 entries for 2 facets"),
+              std::string::npos) << e.what();
+  }
 
   sent.friction_coefficient = {0.45, 0.3};  // the coupler's choice
   snow_sph::ContactSurface terrain_view;

@@ -39,7 +39,8 @@ void check_surface_topology(const SurfaceTopology& t, const std::string& what) {
   check_range(t.facet_nodes, n, what, "surface node");
 }
 
-void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology, const std::string& what) {
+void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology, const std::string& what,
+                         bool friction_required) {
   const std::size_t n = s.nodes.size(), facets = s.facets.size();
   check_length(s.x_m.size(), n, what, "x_m", "nodes");
   check_length(s.y_m.size(), n, what, "y_m", "nodes");
@@ -47,7 +48,7 @@ void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology,
   check_length(s.vx_mps.size(), n, what, "vx_mps", "nodes");
   check_length(s.vy_mps.size(), n, what, "vy_mps", "nodes");
   check_length(s.vz_mps.size(), n, what, "vz_mps", "nodes");
-  if (!s.friction_coefficient.empty()) check_length(s.friction_coefficient.size(), facets, what, "friction_coefficient", "facets");
+  if (friction_required || !s.friction_coefficient.empty()) check_length(s.friction_coefficient.size(), facets, what, "friction_coefficient", "facets");
   check_range(s.nodes, topology.node_count(), what, "surface node");
   check_range(s.facets, topology.facet_count(), what, "surface facet");
 }

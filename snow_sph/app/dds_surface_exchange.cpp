@@ -34,13 +34,9 @@ const cosim::SurfaceState* DdsSurfaceExchange::surface(std::uint64_t exchange) {
   if (!session_.wait_step(*kinematics_in_, filter_, exchange, kinematics_, "SurfaceKinematics", tp::Role::coupler))
     return nullptr;
   cosim::coupling::from_topic(kinematics_, state_);
-  const cosim::SurfaceState& s = state_;
-  const std::string where = "SurfaceKinematics of step " + std::to_string(exchange);
   // The coupler decides every facet's friction: the terrain must have one per facet.
-  if (s.friction_coefficient.size() != s.facets.size())
-    throw cosim::Error(where + ": " + std::to_string(s.facets.size()) + " facets but " +
-                       std::to_string(s.friction_coefficient.size()) + " friction coefficients");
-  cosim::check_surface_state(s, topology_, where);
+  cosim::check_surface_state(state_, topology_, "SurfaceKinematics of step " + std::to_string(exchange),
+                             /*friction_required=*/true);
   last_exchange_ = exchange;
   return &state_;
 }

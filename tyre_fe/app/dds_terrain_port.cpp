@@ -19,10 +19,7 @@ double DdsTerrainPort::connect(const ContactSurfaceDef& surface, double proposed
   // The surface, durable: the coupler, the terrain and any late monitor get it
   // (written with the first exchange, whose header it carries).
   mesh_.node_ids.assign(surface.node_ids.begin(), surface.node_ids.end());
-  mesh_.x_m = surface.x_m, mesh_.y_m = surface.y_m, mesh_.z_m = surface.z_m;
-  mesh_.facet_nodes = surface.facet_nodes;
-  mesh_.facet_tags = surface.facet_tags;
-  mesh_.node_mass_kg = surface.node_mass_kg;
+  cosim::coupling::to_topic(surface, mesh_);
   const tp::HandshakeResult joined =
       session_.join({tp::Role::coupler}, proposed_dt_s,
                     {mesh_out_.get(), kinematics_out_.get(), wheel_out_.get(), loads_in_.get()});

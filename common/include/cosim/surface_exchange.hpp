@@ -62,7 +62,10 @@ SurfaceLoadTotals totals(const SurfaceLoads& loads);
 // "SurfaceKinematics of step 12") and the field: sequence lengths, node and
 // facet numbers in range.
 void check_surface_topology(const SurfaceTopology& topology, const std::string& what);
-void check_surface_state(const SurfaceState& state, const SurfaceTopology& topology, const std::string& what);
+// A state from the owner has no friction yet; one that reached the terrain must
+// have one coefficient per facet (friction_required).
+void check_surface_state(const SurfaceState& state, const SurfaceTopology& topology, const std::string& what,
+                         bool friction_required = false);
 void check_surface_loads(const SurfaceLoads& loads, const SurfaceTopology& topology, const std::string& what);
 
 }  // namespace cosim

@@ -13,7 +13,9 @@ void to_topic(const SurfaceState& state, std::uint64_t run_id, transport::Surfac
 void from_topic(const transport::SurfaceKinematics& sample, SurfaceState& out);
 void to_topic(const SurfaceLoads& loads, std::uint64_t run_id, transport::ContactLoads& out);
 void from_topic(const transport::ContactLoads& sample, SurfaceLoads& out);
-// The mesh's topology (its node ids, the tyre's own numbering, stay on the wire).
+// The mesh's topology; its node ids (the tyre's own numbering) and header are
+// the caller's.
+void to_topic(const SurfaceTopology& topology, transport::SurfaceMesh& out);
 void from_topic(const transport::SurfaceMesh& sample, SurfaceTopology& out);
 
 }  // namespace cosim::coupling
