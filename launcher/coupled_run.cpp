@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/error.hpp"
+#include "cosim/result_references.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/process.hpp"
 #include "study.hpp"
@@ -163,10 +164,13 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
     performance["tyre_compute_s_per_step"] = tyre["performance"]["compute_s_per_step"];
   summary["performance"] = performance;
   summary["status"] = all_completed ? "completed" : "failed";
+  if (scene.message.references_size() > 0)
+    summary["comparison"] = compare_with_references(scene.message, results_json);
   write_json(out + "/summary.json", summary);
   if (code == 0) {
     std::printf("%s\n", results_json.dump(2).c_str());
     print_force_means(results_json, performance, summary);
+    std::printf("%s", reference_lines(summary.value("comparison", nlohmann::json())).c_str());
   }
   return code;
 }

@@ -17,10 +17,7 @@ namespace test_support {
 // Loads, validates and runs a scene with overrides; returns summary.json.
 inline nlohmann::json run(const std::string& scene_file, const std::vector<std::string>& sets,
                           const std::string& out, bool write_vtk = false) {
-  const auto scene = cosim::load_scene(scene_file, sets);
-  cosim::ValidationReport report;
-  snow_sph::validate_sph_scene(*scene, report);
-  report.throw_if_failed();
+  const auto scene = snow_sph::load_sph_scene(scene_file, sets);
   return snow_sph::run_scene(*scene, {out, true, write_vtk});
 }
 

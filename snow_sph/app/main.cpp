@@ -10,6 +10,7 @@
 
 #include "cosim_coupling/cli.hpp"
 #include "cosim/error.hpp"
+#include "cosim/result_references.hpp"
 #include "dds_surface_exchange.hpp"
 #include "cosim/interrupt.hpp"
 #include "snow_sph/run.hpp"
@@ -31,10 +32,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
   try {
-    const auto scene = cosim::load_scene(scene_file, sets);
-    cosim::ValidationReport report;
-    snow_sph::validate_sph_scene(*scene, report);
-    report.throw_if_failed();
+    const auto scene = snow_sph::load_sph_scene(scene_file, sets);
     if (check) {
       std::printf("%s: ok\n", scene_file.c_str());
       return 0;
@@ -51,7 +49,8 @@ int main(int argc, char** argv) {
       options.exchange = &exchange;
       try {
         const auto summary = snow_sph::run_scene(*scene, options);
-        std::printf("%s\n", summary["results"].dump(2).c_str());
+        std::printf("%s\n%s", summary["results"].dump(2).c_str(),
+                    cosim::reference_lines(summary.value("comparison", nlohmann::json())).c_str());
         return 0;
       } catch (const std::exception& e) {
         cosim::coupling::exit_after_failure("snow_sph", e);
@@ -59,7 +58,8 @@ int main(int argc, char** argv) {
 
     }
     const auto summary = snow_sph::run_scene(*scene, {out_dir, quiet, !no_vtk});
-    std::printf("%s\n", summary["results"].dump(2).c_str());
+    std::printf("%s\n%s", summary["results"].dump(2).c_str(),
+                    cosim::reference_lines(summary.value("comparison", nlohmann::json())).c_str());
     return 0;
   } catch (const cosim::Error& e) {
     std::fprintf(stderr, "snow_sph: error: %s\n", e.what());

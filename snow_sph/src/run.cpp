@@ -80,6 +80,8 @@ class SphRun final : public cosim::Participant {
   bool exchange_surface(std::uint64_t exchange);
   void record_rows(bool force);
   void write_frame();
+  void track_rest();              // after each step: the bodies' rest criterion
+  bool bodies_at_rest() const;    // every body with a criterion has met it
 
   const cosim::scene::Scene& scene_;
   RunOptions options_;
@@ -212,6 +214,7 @@ bool SphRun::advance() {
   if (!port_ && !(solver_->time() < settings.end_time - 1e-12 &&
                   (settings.max_steps == 0 || solver_->steps() < settings.max_steps)))
     return false;
+  if (!port_ && bodies_at_rest()) return false;
   const StepStats st = solver_->advance();
   if (port_ && !exchange_surface(exchange_ + 1)) {
     // The surface's owner ended the run during this step.
@@ -220,6 +223,7 @@ bool SphRun::advance() {
     return false;
   }
   solver_->complete_step();
+  track_rest();
   dt_min_ = std::min(dt_min_, st.dt), dt_max_ = std::max(dt_max_, st.dt), dt_sum_ += st.dt;
   clamped_ += st.clamped;
   last_dt_ = st.dt;
@@ -227,6 +231,27 @@ bool SphRun::advance() {
     throw cosim::Error("the solution became non-finite (NaN/Inf) at step " + std::to_string(solver_->steps()) +
                        ", t = " + cosim::number_text(solver_->time()) + " s");
   return true;
+}
+
+void SphRun::track_rest() {
+  const double t = solver_->time();
+  for (RigidBody& b : model_->bodies) {
+    if (!(b.rest_speed > 0.0)) continue;
+    const bool slow = t >= b.ramp_time && std::abs(b.vz) < b.rest_speed;
+    if (!slow) b.slow_since_s = -1.0;
+    else if (b.slow_since_s < 0.0) b.slow_since_s = t;
+  }
+}
+
+// Every body with a rest criterion has been slow for its hold time (and there is at least one).
+bool SphRun::bodies_at_rest() const {
+  bool any = false;
+  for (const RigidBody& b : model_->bodies) {
+    if (!(b.rest_speed > 0.0)) continue;
+    if (b.slow_since_s < 0.0 || solver_->time() - b.slow_since_s < b.rest_hold) return false;
+    any = true;
+  }
+  return any;
 }
 
 void SphRun::output(cosim::RunRecord&) {
@@ -332,6 +357,12 @@ void SphRun::finalize(cosim::RunRecord& record) {
     results[b.name + "_velocity_z_m_per_s"] = b.vz;
     results[b.name + "_contact_force_z_N"] = b.contact_force_z_domain * b.symmetry_factor;
     results[b.name + "_applied_force_z_N"] = b.applied_force_z_now(solver.time());
+    if (b.rest_speed > 0.0) {
+      const bool rested = b.slow_since_s >= 0.0 && solver.time() - b.slow_since_s >= b.rest_hold;
+      results[b.name + "_at_rest"] = rested;
+      results[b.name + "_rest_speed_criterion_m_per_s"] = b.rest_speed;
+      if (rested) results[b.name + "_came_to_rest_at_s"] = b.slow_since_s;
+    }
   }
   const auto& sph = scene_.sph();
   if (sph.probes().floor_pressure()) {

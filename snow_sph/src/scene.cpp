@@ -163,6 +163,11 @@ void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepor
     if (b.drive_case() == sc::RigidBody::DRIVE_NOT_SET)
       r.fail(l.where("name"), "give applied_force_z_N or prescribed_velocity_z_m_per_s");
     if (b.load_ramp_time_s() < 0) r.fail(l.where("load_ramp_time_s"), "must be >= 0");
+    if (b.rest_speed_m_per_s() < 0) r.fail(l.where("rest_speed_m_per_s"), "must be >= 0");
+    if (b.rest_hold_s() < 0) r.fail(l.where("rest_hold_s"), "must be >= 0");
+    if (b.rest_speed_m_per_s() > 0 && b.drive_case() == sc::RigidBody::kPrescribedVelocityZMPerS)
+      r.fail(l.where("rest_speed_m_per_s"), "a body driven at a prescribed speed never comes to rest; "
+                                            "the rest criterion needs applied_force_z_N");
     const auto& c = b.initial_bottom_centre_m();
     bool inside = true;
     for (int a = 0; a < 2; ++a) {
@@ -182,6 +187,14 @@ void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepor
                                            " s is above the stable limit h / c = " + num(limit) +
                                            " s (h = " + num(h) + " m, c = " + num(c) + " m/s)");
   }
+}
+
+std::unique_ptr<cosim::LoadedScene> load_sph_scene(const std::string& path, const std::vector<std::string>& sets) {
+  auto scene = cosim::load_scene(path, sets);
+  cosim::ValidationReport report;
+  validate_sph_scene(*scene, report);
+  report.throw_if_failed();
+  return scene;
 }
 
 MaterialModel material_from_scene(const sc::Material& material) {
@@ -238,6 +251,7 @@ Model build_model(const sc::Scene& scene) {
   st.artificial_stress_epsilon = sph.artificial_stress_epsilon();
   st.density_diffusion_delta = sph.density_diffusion_delta();
   st.damping_per_s = sph.quasi_static_damping_per_s();
+  st.kernel_gradient_correction = sph.kernel_gradient_correction();
   st.gravity[0] = sph.gravity_m_per_s2().x();
   st.gravity[1] = sph.gravity_m_per_s2().y();
   st.gravity[2] = sph.gravity_m_per_s2().z();
@@ -350,6 +364,8 @@ Model build_model(const sc::Scene& scene) {
       body.applied_force_z_full = b.applied_force_z_n();
       body.ramp_time = b.load_ramp_time_s();
       body.vz = b.initial_velocity_z_m_per_s();
+      body.rest_speed = b.rest_speed_m_per_s();
+      body.rest_hold = b.rest_hold_s();
     }
     model.bodies.push_back(body);
   }

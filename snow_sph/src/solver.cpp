@@ -11,6 +11,7 @@
 #include "cosim/penalty_contact.hpp"
 #include "cosim/ramp.hpp"
 #include "snow_sph/boundaries.hpp"
+#include "snow_sph/gradient_correction.hpp"
 #include "snow_sph/cylinder_contact.hpp"
 
 namespace snow_sph {
@@ -164,6 +165,7 @@ void Solver::compute_rates_t() {
   const double* g = m_.settings.gravity;
   const double delta = m_.settings.density_diffusion_delta;
   const double eta2 = 0.01 * k.h * k.h;
+  const bool correct = m_.settings.kernel_gradient_correction;
   pair_f_.resize(list_.index.size());
   pair_inv_.resize(list_.index.size());
   const auto* off = list_.offsets.data();
@@ -177,6 +179,8 @@ void Solver::compute_rates_t() {
     const double c_diff = diffuse ? delta * k.h * mi.eos.c0 : 0.0;
     const double hydro = diffuse ? mi.density0 / (mi.eos.c0 * mi.eos.c0) : 0.0;
     double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
+    // sum_j m_j (x_j - x_i) (x) grad W (symmetric): the correction's matrix.
+    double mxx = 0, mxy = 0, mxz = 0, myy = 0, myz = 0, mzz = 0;
     double diffusion = 0.0;
     double count = 0.0;  // a double so that the loop below vectorises as one type
     const double* px = p.x.data(); const double* py = p.y.data(); const double* pz = p.z.data();
@@ -193,7 +197,7 @@ void Solver::compute_rates_t() {
     // gradient, so the loop vectorises over neighbours. The summation order is
     // fixed by the pair list, so results do not depend on the thread count.
     {
-#pragma omp simd reduction(+ : l0, l1, l2, l3, l4, l5, l6, l7, l8, count)
+#pragma omp simd reduction(+ : l0, l1, l2, l3, l4, l5, l6, l7, l8, mxx, mxy, mxz, myy, myz, mzz, count)
       for (int e = 0; e < n_pairs; ++e) {
         const std::uint32_t j = nbi[e];
         const double rx = xi - px[j], ry = yi - py[j], rz = zi - pz[j];
@@ -211,6 +215,8 @@ void Solver::compute_rates_t() {
         l0 += dvx * gx, l1 += dvx * gy, l2 += dvx * gz;
         l3 += dvy * gx, l4 += dvy * gy, l5 += dvy * gz;
         l6 += dvz * gx, l7 += dvz * gy, l8 += dvz * gz;
+        mxx -= rx * gx, mxy -= rx * gy, mxz -= rx * gz;
+        myy -= ry * gy, myz -= ry * gz, mzz -= rz * gz;
       }
     }
     if (diffuse) {
@@ -230,6 +236,10 @@ void Solver::compute_rates_t() {
       }
     }
     double l[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
+    if (correct) {
+      const double m[6] = {mxx, mxy, mxz, myy, myz, mzz};
+      correct_velocity_gradient(l, p.density[i], m);
+    }
     const double inv_rho = 1.0 / p.density[i];
     lxx_[i] = l[0] * inv_rho, lxy_[i] = l[1] * inv_rho, lxz_[i] = l[2] * inv_rho;
     lyx_[i] = l[3] * inv_rho, lyy_[i] = l[4] * inv_rho, lyz_[i] = l[5] * inv_rho;

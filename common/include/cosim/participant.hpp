@@ -56,11 +56,13 @@ class RunRecord {
                 int value_column, const std::string& title, const std::string& x_label, const std::string& y_label,
                 const std::string& value_label);
 
-  // Writes summary.json with the status, wall time, simulated time and steps.
+  // Writes summary.json with the status, wall time, simulated time, steps and
+  // the results beside the scene's references ("comparison", cosim/result_references.hpp).
   void write(const std::string& status, double sim_time_s, std::uint64_t steps);
 
  private:
   std::string out_dir_;
+  scene::Scene scene_;  // for its references
   nlohmann::json summary_;
   std::map<std::string, std::unique_ptr<CsvWriter>> series_;
   double start_s_;

@@ -50,6 +50,9 @@ struct RigidBody {
   double prescribed_vz = 0.0;
   double applied_force_z_full = 0.0;  // full-model force
   double ramp_time = 0.0;
+  // Rest criterion (scene RigidBody.rest_speed_m_per_s): 0 = none. slow_since_s is
+  // when the speed last fell below rest_speed after the ramp (-1: not below now).
+  double rest_speed = 0.0, rest_hold = 0.0, slow_since_s = -1.0;
   double contact_force_z_domain = 0.0;  // last step, simulated part
   double contact_force_x_domain = 0.0, contact_force_y_domain = 0.0;
   double applied_force_z_now(double t) const;
@@ -64,6 +67,7 @@ struct Settings {
   double artificial_stress_epsilon = 0.0;
   double density_diffusion_delta = 0.0;
   double damping_per_s = 0.0;
+  bool kernel_gradient_correction = false;  // scene sph.kernel_gradient_correction
   double gravity[3] = {0.0, 0.0, -9.81};
   double spacing = 0.0;
   double contact_stiffness = 0.0;  // per particle [N/m]

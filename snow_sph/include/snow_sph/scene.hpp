@@ -11,6 +11,10 @@ namespace snow_sph {
 // stable limit, ...). Adds one line per problem to `report`.
 void validate_sph_scene(const cosim::LoadedScene& scene, cosim::ValidationReport& report);
 
+// load_scene with the overrides, then validate_sph_scene; throws cosim::Error
+// listing every problem with its file:line:field.
+std::unique_ptr<cosim::LoadedScene> load_sph_scene(const std::string& path, const std::vector<std::string>& sets);
+
 MaterialModel material_from_scene(const cosim::scene::Material& material);
 
 // Builds the model of a validated scene.

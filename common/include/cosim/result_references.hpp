@@ -1,0 +1,22 @@
+#pragma once
+// A run's results beside the published values its scene names (Scene.references,
+// configs/schema/scene.proto): the comparison summary.json keeps and the lines a
+// run prints last, e.g.
+//   plate_displacement_m = 0.187, laboratory (Haehnel & Shoop 2004) 0.200, -6.5 %
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scene.pb.h"
+
+namespace cosim {
+
+// One entry per reference: {result, value (null when the run has no such
+// result), reference, source, relative_difference (null likewise)}. A dotted
+// result ("tyre.sinkage_m") looks into nested objects.
+nlohmann::json compare_with_references(const scene::Scene& scene, const nlohmann::json& results);
+
+// The comparison as text, one line per entry; empty when there is none.
+std::string reference_lines(const nlohmann::json& comparison);
+
+}  // namespace cosim
