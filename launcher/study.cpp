@@ -62,6 +62,7 @@ int run_scene_processes(const RunRequest& request) {
 namespace {
 
 std::string csv_number(const nlohmann::json& v) {
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";  // e.g. plate_at_rest
   if (!v.is_number()) return "";
   char b[64];
   std::snprintf(b, sizeof b, "%.6g", v.get<double>());

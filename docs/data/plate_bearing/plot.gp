@@ -4,7 +4,7 @@
 set terminal pngcairo size 1000,650 font ",11"
 set output "../../img/plate_bearing_fe_sph.png"
 set datafile separator ","
-set key top left
+set key bottom right font ",10"
 set grid
 set xlabel "plate displacement [m]"
 set ylabel "force of the snow on the plate [N]"
@@ -17,4 +17,5 @@ plot 1867 with lines dt 2 lc rgb "black" title "laboratory load 1,867 N", \
      "sph_20mm_table31_pushed_corrected.csv" skip 2 using 1:2 with lines lw 2 lc rgb "#1f77b4" dt 4 title "SPH, Table 3.1 snow, corrected gradient", \
      "fe_20mm_triaxial_pushed.csv" skip 2 using 1:2 with lines lw 3 lc rgb "#d62728" title "FE mesh, triaxial-matched snow (mesh inverts)", \
      "sph_20mm_triaxial_pushed.csv" skip 2 using 1:2 with lines lw 2 lc rgb "#d62728" dt 3 title "SPH, triaxial-matched snow", \
-     "sph_20mm_triaxial_pushed_corrected.csv" skip 2 using 1:2 with lines lw 2 lc rgb "#d62728" dt 4 title "SPH, triaxial-matched snow, corrected gradient"
+     "sph_20mm_triaxial_pushed_corrected.csv" skip 2 using 1:2 with lines lw 2 lc rgb "#d62728" dt 4 title "SPH, triaxial-matched snow, corrected gradient", \
+     "sph_20mm_triaxial_pushed_av006.csv" skip 2 using 1:2 with lines lw 1 lc rgb "#ff9896" title "SPH, triaxial-matched snow, alpha 0.06, beta 1.2"
