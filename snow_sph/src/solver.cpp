@@ -150,14 +150,18 @@ void Solver::rebuild_if_needed(bool force) {
 // continuity drho_i/dt = -rho_i tr(L_i) (the pair that conserves energy with
 // the momentum equation in compute_forces), plus delta-SPH diffusion for water.
 void Solver::compute_rates() {
+  const bool correct = m_.settings.kernel_gradient_correction;
   switch (m_.kernel.type) {
-    case KernelType::cubic: return compute_rates_t<KernelType::cubic>();
-    case KernelType::quadratic: return compute_rates_t<KernelType::quadratic>();
-    case KernelType::quintic: return compute_rates_t<KernelType::quintic>();
+    case KernelType::cubic:
+      return correct ? compute_rates_t<KernelType::cubic, true>() : compute_rates_t<KernelType::cubic, false>();
+    case KernelType::quadratic:
+      return correct ? compute_rates_t<KernelType::quadratic, true>() : compute_rates_t<KernelType::quadratic, false>();
+    case KernelType::quintic:
+      return correct ? compute_rates_t<KernelType::quintic, true>() : compute_rates_t<KernelType::quintic, false>();
   }
 }
 
-template <KernelType T>
+template <KernelType T, bool Correct>
 void Solver::compute_rates_t() {
   Particles& p = m_.particles;
   const Kernel k = m_.kernel;
@@ -165,7 +169,6 @@ void Solver::compute_rates_t() {
   const double* g = m_.settings.gravity;
   const double delta = m_.settings.density_diffusion_delta;
   const double eta2 = 0.01 * k.h * k.h;
-  const bool correct = m_.settings.kernel_gradient_correction;
   pair_f_.resize(list_.index.size());
   pair_inv_.resize(list_.index.size());
   const auto* off = list_.offsets.data();
@@ -215,8 +218,10 @@ void Solver::compute_rates_t() {
         l0 += dvx * gx, l1 += dvx * gy, l2 += dvx * gz;
         l3 += dvy * gx, l4 += dvy * gy, l5 += dvy * gz;
         l6 += dvz * gx, l7 += dvz * gy, l8 += dvz * gz;
-        mxx -= rx * gx, mxy -= rx * gy, mxz -= rx * gz;
-        myy -= ry * gy, myz -= ry * gz, mzz -= rz * gz;
+        if constexpr (Correct) {
+          mxx -= rx * gx, mxy -= rx * gy, mxz -= rx * gz;
+          myy -= ry * gy, myz -= ry * gz, mzz -= rz * gz;
+        }
       }
     }
     if (diffuse) {
@@ -236,7 +241,7 @@ void Solver::compute_rates_t() {
       }
     }
     double l[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
-    if (correct) {
+    if constexpr (Correct) {
       const double m[6] = {mxx, mxy, mxz, myy, myz, mzz};
       correct_velocity_gradient(l, p.density[i], m);
     }

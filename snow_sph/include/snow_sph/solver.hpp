@@ -116,7 +116,9 @@ class Solver {
  private:
   void rebuild_if_needed(bool force);
   void compute_rates();
-  template <KernelType T> void compute_rates_t();
+  // Correct: the corrected velocity gradient (gradient_correction.hpp); a template
+  // argument so that the plain loop carries none of its sums.
+  template <KernelType T, bool Correct> void compute_rates_t();
   template <KernelType T> void compute_forces_t();
   void update_materials(double dt);
   void compute_forces();
