@@ -165,7 +165,7 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   summary["performance"] = performance;
   summary["status"] = all_completed ? "completed" : "failed";
   if (scene.message.references_size() > 0)
-    summary["comparison"] = compare_with_references(scene.message, results_json);
+    summary["comparison"] = compare_with_references(scene.message.references(), results_json);
   write_json(out + "/summary.json", summary);
   if (code == 0) {
     std::printf("%s\n", results_json.dump(2).c_str());

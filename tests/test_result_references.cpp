@@ -21,7 +21,7 @@ TEST(ResultReferences, RelativeDifferenceNestedAndMissing) {
     references { result: "tyre.sinkage_m" value: 0.05 source: "thesis" }
     references { result: "contact_area_m2" value: 0.229 source: "thesis SPH" })");
   const nlohmann::json results = {{"plate_displacement_m", 0.21}, {"tyre", {{"sinkage_m", 0.04}}}};
-  const auto c = cosim::compare_with_references(scene, results);
+  const auto c = cosim::compare_with_references(scene.references(), results);
   ASSERT_EQ(c.size(), 3u);
   // (0.21 - 0.2) / 0.2 and (0.04 - 0.05) / 0.05, to round-off.
   EXPECT_NEAR(c[0]["relative_difference"].get<double>(), 0.05, 1e-12);
@@ -34,7 +34,7 @@ TEST(ResultReferences, RelativeDifferenceNestedAndMissing) {
 }
 
 TEST(ResultReferences, NoReferencesNoLines) {
-  const auto c = cosim::compare_with_references(cosim::scene::Scene(), {{"x", 1.0}});
+  const auto c = cosim::compare_with_references(cosim::scene::Scene().references(), {{"x", 1.0}});
   EXPECT_TRUE(c.empty());
   EXPECT_EQ(cosim::reference_lines(c), "");
 }

@@ -254,14 +254,15 @@ TEST(SnowOedometer, LagrangianMeshSettlesAsTheClosedForm) {
   fe::Mesh m = fe::make_mesh(r_lines, z_lines, o.snow.density_kg_per_m3(), mat.mdpc);
   for (int j = 0; j < m.nodes_z; ++j) m.hold_r[m.node(0, j)] = m.hold_r[m.node(m.nodes_r - 1, j)] = 1;
   for (int i = 0; i < m.nodes_r; ++i) m.hold_z[m.node(i, 0)] = 1;
-  const double k0 = o.snow.poisson_ratio() / (1.0 - o.snow.poisson_ratio()), rho = o.snow.density_kg_per_m3();
+  const double rho = o.snow.density_kg_per_m3();
   for (int e = 0; e < m.elements(); ++e)
     for (int g = 0; g < 4; ++g) {
       Eigen::Matrix3d& s = m.stress_Pa[4 * e + g];
       s = Eigen::Matrix3d::Zero();
       s(1, 1) = -rho * o.g * (o.height - fe::gauss_point_position(m, e, g).y());
-      s(0, 0) = s(2, 2) = k0 * s(1, 1);
-      m.eps_vol_pl[4 * e + g] = snow_sph::cap_strain_enclosing(mat.mdpc, s);
+      const auto k0 = snow_sph::confined_layer_state(mat.mdpc, s(1, 1));
+      s(0, 0) = s(2, 2) = k0.horizontal_stress_Pa;
+      m.eps_vol_pl[4 * e + g] = k0.eps_vol_pl;
     }
   // Consistent nodal loads of a unit pressure on the top edge, per radian.
   const int top = m.nodes_z - 1;

@@ -19,7 +19,7 @@ double now_s() {
 
 RunRecord::RunRecord(const LoadedScene& loaded, std::string out_dir, const std::string& program)
     : out_dir_(std::move(out_dir)), start_s_(now_s()) {
-  *scene_.mutable_references() = loaded.message.references();
+  references_ = loaded.message.references();
   make_folder(out_dir_);
   nlohmann::json overrides = nlohmann::json::object();
   for (const auto& [k, v] : loaded.overrides) overrides[k] = v;
@@ -67,7 +67,7 @@ void RunRecord::write(const std::string& status, double sim_time_s, std::uint64_
   summary_["wall_time_s"] = wall_s();
   summary_["sim_time_s"] = sim_time_s;
   summary_["steps"] = steps;
-  if (scene_.references_size() > 0) summary_["comparison"] = compare_with_references(scene_, summary_["results"]);
+  if (!references_.empty()) summary_["comparison"] = compare_with_references(references_, summary_["results"]);
   write_json(path("summary.json"), summary_);
 }
 

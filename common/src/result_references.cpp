@@ -22,9 +22,9 @@ const nlohmann::json* find_result(const nlohmann::json& results, const std::stri
 
 }  // namespace
 
-nlohmann::json compare_with_references(const scene::Scene& scene, const nlohmann::json& results) {
+nlohmann::json compare_with_references(const ResultReferences& references, const nlohmann::json& results) {
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& r : scene.references()) {
+  for (const auto& r : references) {
     nlohmann::json entry = {{"result", r.result()}, {"reference", r.value()}, {"source", r.source()},
                             {"value", nullptr}, {"relative_difference", nullptr}};
     const nlohmann::json* value = find_result(results, r.result());
@@ -57,6 +57,11 @@ std::string reference_lines(const nlohmann::json& comparison) {
     text += line;
   }
   return text;
+}
+
+void print_results(const nlohmann::json& summary) {
+  std::printf("%s\n%s", summary.value("results", nlohmann::json::object()).dump(2).c_str(),
+              reference_lines(summary.value("comparison", nlohmann::json())).c_str());
 }
 
 }  // namespace cosim

@@ -49,8 +49,7 @@ int main(int argc, char** argv) {
       options.exchange = &exchange;
       try {
         const auto summary = snow_sph::run_scene(*scene, options);
-        std::printf("%s\n%s", summary["results"].dump(2).c_str(),
-                    cosim::reference_lines(summary.value("comparison", nlohmann::json())).c_str());
+        cosim::print_results(summary);
         return 0;
       } catch (const std::exception& e) {
         cosim::coupling::exit_after_failure("snow_sph", e);
@@ -58,8 +57,7 @@ int main(int argc, char** argv) {
 
     }
     const auto summary = snow_sph::run_scene(*scene, {out_dir, quiet, !no_vtk});
-    std::printf("%s\n%s", summary["results"].dump(2).c_str(),
-                    cosim::reference_lines(summary.value("comparison", nlohmann::json())).c_str());
+    cosim::print_results(summary);
     return 0;
   } catch (const cosim::Error& e) {
     std::fprintf(stderr, "snow_sph: error: %s\n", e.what());

@@ -372,6 +372,13 @@ MdpcStepResult mdpc_update(const MdpcParameters& prm, const Eigen::Matrix3d& str
   return {p * dvol + q * (q_tr - q) / (3.0 * m.G), surface};
 }
 
+ConfinedLayerState confined_layer_state(const MdpcParameters& prm, double sv) {
+  const double sh = prm.poisson_ratio / (1.0 - prm.poisson_ratio) * sv;
+  Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
+  s(0, 0) = s(1, 1) = sh, s(2, 2) = sv;
+  return {sh, cap_strain_enclosing(prm, s)};
+}
+
 double cap_strain_enclosing(const MdpcParameters& prm, const Eigen::Matrix3d& stress) {
   const double eps0 = prm.initial_cap_volumetric_plastic_strain;
   const Table tab = table_of(prm);

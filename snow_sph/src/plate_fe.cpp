@@ -73,6 +73,7 @@ PlateFeSetup plate_fe_setup_from_scene(const cosim::LoadedScene& loaded, double 
   s.end_time_s = scene.time().end_time_s();
   if (scene.output().csv_interval_s() > 0.0) s.output_interval_s = scene.output().csv_interval_s();
   s.geostatic_initial_state = block.geostatic_initial_state();
+  s.references = scene.references();
   if (!(s.plate_radius_m < s.slab_radius_m))
     throw cosim::Error(where + ": sph.rigid_bodies[0].radius_m must be smaller than the slab's radius");
   return s;
@@ -95,15 +96,15 @@ nlohmann::json run_plate_fe(const PlateFeSetup& s, const std::string& out, bool 
   const int top = mesh.nodes_z - 1;
   const double g = s.gravity_m_per_s2, H = s.slab_depth_m;
   if (s.geostatic_initial_state) {
-    // K0 state of a laterally confined elastic layer, as the SPH blocks (scene.cpp).
-    const double k0 = s.snow.poisson_ratio / (1.0 - s.snow.poisson_ratio);
+    // The K0 state of the SPH blocks (confined_layer_state); z is the mesh's axis 1.
     for (int e = 0; e < mesh.elements(); ++e)
       for (int p = 0; p < 4; ++p) {
         const double sv = -s.density_kg_per_m3 * g * (H - fe::gauss_point_position(mesh, e, p).y());
+        const ConfinedLayerState k0 = confined_layer_state(s.snow, sv);
         Eigen::Matrix3d& sigma = mesh.stress_Pa[4 * e + p];
         sigma = Eigen::Matrix3d::Zero();
-        sigma(1, 1) = sv, sigma(0, 0) = sigma(2, 2) = k0 * sv;
-        mesh.eps_vol_pl[4 * e + p] = cap_strain_enclosing(s.snow, sigma);
+        sigma(1, 1) = sv, sigma(0, 0) = sigma(2, 2) = k0.horizontal_stress_Pa;
+        mesh.eps_vol_pl[4 * e + p] = k0.eps_vol_pl;
       }
   }
   const double K = s.snow.bulk_modulus_Pa(), G = s.snow.shear_modulus_Pa();
@@ -263,6 +264,7 @@ nlohmann::json run_plate_fe(const PlateFeSetup& s, const std::string& out, bool 
                         {"depth_at_largest_snow_force_m", depth_at_max_force},
                         {"smallest_jacobian_ratio", smallest_ratio},
                         {"plastic_work_J", kTwoPi * plastic_work}};
+  if (!s.references.empty()) summary["comparison"] = cosim::compare_with_references(s.references, summary["results"]);
   cosim::write_json(out + "/summary.json", summary);
   return summary;
 }

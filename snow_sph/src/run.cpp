@@ -248,7 +248,7 @@ bool SphRun::bodies_at_rest() const {
   bool any = false;
   for (const RigidBody& b : model_->bodies) {
     if (!(b.rest_speed > 0.0)) continue;
-    if (b.slow_since_s < 0.0 || solver_->time() - b.slow_since_s < b.rest_hold) return false;
+    if (!b.at_rest(solver_->time())) return false;
     any = true;
   }
   return any;
@@ -358,7 +358,7 @@ void SphRun::finalize(cosim::RunRecord& record) {
     results[b.name + "_contact_force_z_N"] = b.contact_force_z_domain * b.symmetry_factor;
     results[b.name + "_applied_force_z_N"] = b.applied_force_z_now(solver.time());
     if (b.rest_speed > 0.0) {
-      const bool rested = b.slow_since_s >= 0.0 && solver.time() - b.slow_since_s >= b.rest_hold;
+      const bool rested = b.at_rest(solver.time());
       results[b.name + "_at_rest"] = rested;
       results[b.name + "_rest_speed_criterion_m_per_s"] = b.rest_speed;
       if (rested) results[b.name + "_came_to_rest_at_s"] = b.slow_since_s;

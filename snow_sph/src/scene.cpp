@@ -324,15 +324,12 @@ Model build_model(const sc::Scene& scene) {
           } else {
             p.eps_vol_pl[q] = mat.mdpc.initial_cap_volumetric_plastic_strain;
             if (block.geostatic_initial_state()) {
-              // K0 state of a laterally confined elastic layer: sigma_h = nu/(1-nu) sigma_v.
-              const double nu = mat.mdpc.poisson_ratio;
               const double sv = -mat.density0 * g * depth;
+              const ConfinedLayerState k0 = confined_layer_state(mat.mdpc, sv);
               p.szz[q] = sv;
-              p.sxx[q] = p.syy[q] = nu / (1.0 - nu) * sv;
-              Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
-              s(0, 0) = p.sxx[q], s(1, 1) = p.syy[q], s(2, 2) = p.szz[q];
-              p.eps_vol_pl[q] = cap_strain_enclosing(mat.mdpc, s);
-              p.pressure[q] = -s.trace() / 3.0;
+              p.sxx[q] = p.syy[q] = k0.horizontal_stress_Pa;
+              p.eps_vol_pl[q] = k0.eps_vol_pl;
+              p.pressure[q] = -(p.sxx[q] + p.syy[q] + p.szz[q]) / 3.0;
             }
           }
           p.density[q] = rho;

@@ -53,8 +53,7 @@ int main(int argc, char** argv) {
       options.terrain = &port;
       try {
         const auto summary = tyre_fe::run_tyre_scene(*scene, options);
-        std::printf("%s\n%s", summary["results"].dump(2).c_str(),
-                    cosim::reference_lines(summary.value("comparison", nlohmann::json())).c_str());
+        cosim::print_results(summary);
         return 0;
       } catch (const std::exception& e) {
         cosim::coupling::exit_after_failure("tyre_fe", e);
@@ -62,8 +61,7 @@ int main(int argc, char** argv) {
 
     }
     const auto summary = tyre_fe::run_tyre_scene(*scene, {out_dir, quiet, !no_vtk, mesh_only});
-    std::printf("%s\n%s", summary["results"].dump(2).c_str(),
-                    cosim::reference_lines(summary.value("comparison", nlohmann::json())).c_str());
+    cosim::print_results(summary);
     return 0;
   } catch (const cosim::Error& e) {
     std::fprintf(stderr, "tyre_fe: error: %s\n", e.what());

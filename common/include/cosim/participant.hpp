@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/outputs.hpp"
+#include "cosim/result_references.hpp"
 #include "cosim/scene_io.hpp"
 
 namespace cosim {
@@ -62,7 +63,7 @@ class RunRecord {
 
  private:
   std::string out_dir_;
-  scene::Scene scene_;  // for its references
+  ResultReferences references_;  // the scene's
   nlohmann::json summary_;
   std::map<std::string, std::unique_ptr<CsvWriter>> series_;
   double start_s_;

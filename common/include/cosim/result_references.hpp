@@ -14,9 +14,14 @@ namespace cosim {
 // One entry per reference: {result, value (null when the run has no such
 // result), reference, source, relative_difference (null likewise)}. A dotted
 // result ("tyre.sinkage_m") looks into nested objects.
-nlohmann::json compare_with_references(const scene::Scene& scene, const nlohmann::json& results);
+using ResultReferences = google::protobuf::RepeatedPtrField<scene::ResultReference>;
+nlohmann::json compare_with_references(const ResultReferences& references, const nlohmann::json& results);
 
 // The comparison as text, one line per entry; empty when there is none.
 std::string reference_lines(const nlohmann::json& comparison);
+
+// What a program prints at the end of a run: summary "results" as JSON, then
+// the lines of its "comparison" (if any).
+void print_results(const nlohmann::json& summary);
 
 }  // namespace cosim

@@ -70,6 +70,17 @@ MdpcStepResult mdpc_update(const MdpcParameters& params, const Eigen::Matrix3d& 
 // surface instead of outside it. The returned value always gives Fc <= 0.
 double cap_strain_enclosing(const MdpcParameters& params, const Eigen::Matrix3d& stress);
 
+// The geostatic state of a laterally confined elastic layer under the vertical
+// stress sigma_v (< 0 in compression; rho g depth below the top): the
+// horizontal stress K0 sigma_v, K0 = nu / (1 - nu), and the cap hardening that
+// encloses that stress (cap_strain_enclosing). The SPH blocks and the
+// finite-element plate start from it.
+struct ConfinedLayerState {
+  double horizontal_stress_Pa;
+  double eps_vol_pl;
+};
+ConfinedLayerState confined_layer_state(const MdpcParameters& params, double vertical_stress_Pa);
+
 // Invariants and yield-function values for tests and diagnostics: p (pressure,
 // compression positive), q (Mises), Fs (eq 1.6), Fc (eq 1.9) and pa for the
 // given hardening state.

@@ -53,6 +53,8 @@ struct RigidBody {
   // Rest criterion (scene RigidBody.rest_speed_m_per_s): 0 = none. slow_since_s is
   // when the speed last fell below rest_speed after the ramp (-1: not below now).
   double rest_speed = 0.0, rest_hold = 0.0, slow_since_s = -1.0;
+  // The criterion is set and has been met at time t.
+  bool at_rest(double t) const { return rest_speed > 0.0 && slow_since_s >= 0.0 && t - slow_since_s >= rest_hold; }
   double contact_force_z_domain = 0.0;  // last step, simulated part
   double contact_force_x_domain = 0.0, contact_force_y_domain = 0.0;
   double applied_force_z_now(double t) const;

@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/result_references.hpp"
 #include "cosim/scene_io.hpp"
 #include "snow_sph/mdpc.hpp"
 
@@ -41,10 +42,11 @@ struct PlateFeSetup {
   double output_interval_s = 5e-4;
   double time_step_fraction = 0.4;  // of sqrt(2) A / diagonal / c, see stable_time_step
   bool geostatic_initial_state = true;
+  cosim::ResultReferences references;  // the scene's: summary "comparison"
 };
 
 // From an SPH plate-sinkage scene: its first block's snow, its box, its first
-// rigid body, gravity, end time and output interval. The element size is the
+// rigid body, gravity, end time, output interval and references. The element size is the
 // particle spacing unless element_size_m > 0. Throws cosim::Error naming the
 // field when the scene is not a plate-sinkage scene.
 PlateFeSetup plate_fe_setup_from_scene(const cosim::LoadedScene& scene, double element_size_m = 0.0);
