@@ -1,7 +1,7 @@
 // Particle-surface penalty contact (snow_sph/surface_contact.hpp) against hand
 // calculations: penalty force, its split over the facet nodes, Coulomb friction
 // with its elastic stick (carried between calls), damping, momentum balance, concave corners, edges,
-// and independence of the thread count.
+// the deepest penetration, and independence of the thread count.
 #include <cmath>
 #include <random>
 
@@ -274,6 +274,50 @@ TEST(SurfaceContact, AConvexEdgePushesAlongTheLineFromTheEdge) {
   EXPECT_NEAR(p.az * kMass, -f / std::sqrt(2.0), 1e-9);
 }
 
+// The deepest penetration is radius - d for the particle centre's signed
+// distance d to the facet (or to the edge). The heights are exact here and the
+// facet's normal is exactly -z, so the only error is the rounding of radius - d:
+// 1e-15 m is far above it (~1e-18 m) and far below any overlap of interest.
+constexpr double kOverlapRounding = 1e-15;
+
+TEST(SurfaceContact, MaxPenetrationIsTheOverlapOfTheParticlesSphereWithTheFacet) {
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.3);
+  Particle p{0.002, -0.003, -(kRadius - 0.0013)};  // centre 3.7 mm below the facet, radius 5 mm
+  EXPECT_NEAR(contact(s, p).max_penetration_m, 0.0013, kOverlapRounding);
+  Particle apart{0.0, 0.0, -1.001 * kRadius};
+  EXPECT_EQ(contact(s, apart).max_penetration_m, 0.0);
+}
+
+TEST(SurfaceContact, MaxPenetrationBeyondTheRadiusWhenTheCentreCrossedTheFacet) {
+  // The centre 0.3 radius behind the facet: the overlap is 1.3 radii, while
+  // the force stays that of one radius.
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.3);
+  Particle p{0.0, 0.0, 0.3 * kRadius};
+  const SurfaceContactResult l = contact(s, p);
+  EXPECT_NEAR(l.max_penetration_m, 1.3 * kRadius, kOverlapRounding);
+  EXPECT_NEAR(p.az * kMass, -kStiffness * kRadius, 1e-9);
+}
+
+TEST(SurfaceContact, MaxPenetrationAtAnEdgeIsTheRadiusLessTheDistanceToTheEdge) {
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.0);
+  Particle p{0.01 + 0.003, 0.0, -0.002};  // 3 mm beyond the edge x = 0.01, 2 mm below
+  EXPECT_NEAR(contact(s, p).max_penetration_m, kRadius - std::sqrt(13e-6), kOverlapRounding);
+}
+
+TEST(SurfaceContact, MaxPenetrationIsTheDeepestOfSeveralParticles) {
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.3);
+  const double x[3] = {-0.005, 0.0, 0.005}, y[3] = {0, 0, 0}, z[3] = {-0.004, -0.0025, -0.0045};
+  const double v[3] = {0, 0, 0}, m[3] = {kMass, kMass, kMass};
+  double ax[3] = {0, 0, 0}, ay[3] = {0, 0, 0}, az[3] = {0, 0, 0};
+  SurfaceContactResult l;
+  snow_sph::surface_contact(s, params(), 3, x, y, z, v, v, v, m, kDt, ax, ay, az, l);
+  EXPECT_NEAR(l.max_penetration_m, kRadius - 0.0025, kOverlapRounding);
+}
+
 // A patch of a cylinder (radius 0.35 m, axis y) seen from below, moving, and
 // particles scattered under it with random velocities.
 struct Scatter {
@@ -346,6 +390,7 @@ TEST(SurfaceContact, ResultDoesNotDependOnTheThreadCount) {
     a.insert(a.end(), l.node_fx.begin(), l.node_fx.end());
     a.insert(a.end(), l.node_fz.begin(), l.node_fz.end());
     a.insert(a.end(), l.facet_normal_force_N.begin(), l.facet_normal_force_N.end());
+    a.push_back(l.max_penetration_m);
     return a;
   };
   const auto one = run(1), two = run(2);

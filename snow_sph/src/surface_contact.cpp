@@ -128,6 +128,7 @@ struct Contact {
   double w[4] = {0, 0, 0, 0};
   double f[3] = {0, 0, 0};  // force on the particle
   double fn = 0.0, ft[3] = {0, 0, 0};
+  double penetration_m = 0.0;  // radius - signed distance, before the cap at one radius
   double friction_J = 0.0, damping_J = 0.0, elastic_J = 0.0;
 };
 struct ParticleContacts {
@@ -318,6 +319,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       // A particle pushed past the facet plane (penetration beyond its radius)
       // is pushed back with the force of a radius's penetration: no larger
       // impulse reaches the light tread nodes of a sipe-cut block.
+      const double penetration = delta;
       delta = std::min(delta, radius);
       const double c_d = cosim::penalty::damping_coefficient(params.damping_ratio, k, m);
       const cosim::penalty::NormalForce normal =
@@ -387,6 +389,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       for (int a = 0; a < 4; ++a) ct.w[a] = w[a];
       for (int a = 0; a < 3; ++a) ct.f[a] = force[a], ct.ft[a] = ft[a], ct.normal[a] = n[a], ct.spring[a] = spring[a];
       ct.fn = fn;
+      ct.penetration_m = penetration;
       ct.friction_J = friction_J;
       ct.damping_J = cosim::penalty::approach_damping_power(normal, vn) * dt;
       ct.elastic_J = 0.5 * k * delta * delta + (ft_mag > 0.0 ? 0.5 * spring.squaredNorm() / kt : 0.0);
@@ -491,6 +494,8 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       loads.friction_dissipation_J += ct.friction_J;
       loads.damping_dissipation_J += ct.damping_J;
       loads.elastic_energy_J += ct.elastic_J;
+      // The deepest contact as a max in this serial loop: the same for any thread count.
+      loads.max_penetration_m = std::max(loads.max_penetration_m, ct.penetration_m);
     }
   }
   // The sticks of this call become the history of the next, grouped by particle id.

@@ -73,6 +73,11 @@ struct SurfaceContactResult {
   double friction_dissipation_J = 0;  // this step: sum ft vt dt
   double damping_dissipation_J = 0;   // this step: contact damping
   double elastic_energy_J = 0;        // in the penalty springs now: sum k delta^2 / 2
+  // The deepest contact: the largest penetration radius - d over the contacts
+  // (d the particle centre's signed distance to the facet, or to the edge or
+  // corner point), before the force's cap at one radius; 0 without contact.
+  // Above the radius a particle's centre has crossed the surface.
+  double max_penetration_m = 0;
 };
 
 // The sparse loads that go back to the surface's owner: the nodes and facets of
@@ -97,7 +102,8 @@ struct SurfaceContactParameters {
 //  - otherwise an edge or corner contact with the closest point c of the
 //    nearest facet (Ericson, Real-Time Collision Detection 2005, 5.1.5), along
 //    the line from c to the particle (a convex ridge pushes away from itself).
-// Each contact: penetration delta = radius - d (at most one radius) gives
+// Each contact: penetration delta = radius - d (capped at one radius; the
+// result's max_penetration_m is the largest before the cap) gives
 // fn = max(0, k delta - c_d v_n) along the normal (v_n: normal velocity of the
 // particle relative to the surface at the contact point; damping only while
 // approaching), and Coulomb friction with an elastic stick: a tangential spring
