@@ -114,8 +114,9 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
       {"tyre_fe", bin + "/tyre_fe", args_for("tyre", out + "/tyre", true, false)}};
   const auto results = run_children(children, 10.0);
 
-  // The run's summary: the coupler's results (the force decomposition) and the
-  // tyre's, with each process's status.
+  // The run's summary: the coupler's results (the force decomposition), the
+  // terrain's beside them (the rut and the deepest penetration), the tyre's,
+  // with each process's status.
   nlohmann::json summary = {{"scene", scene.message.name()}, {"scene_file", scene.file},
                             {"revision", source_revision()}, {"run_id", hex(run_id)}, {"dds_domain", domain}};
   nlohmann::json overrides = nlohmann::json::object();
@@ -146,6 +147,10 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   summary["participants"] = participants;
   nlohmann::json results_json = nlohmann::json::object();
   if (coupler.is_object() && coupler.contains("results")) results_json = coupler["results"];
+  // The terrain's results at the top level too; a key the coupler has keeps the coupler's value.
+  if (terrain.is_object() && terrain.contains("results") && results_json.is_object())
+    for (const auto& [k, v] : terrain["results"].items())
+      if (!results_json.contains(k)) results_json[k] = v;
   if (tyre.is_object() && tyre.contains("results"))
     for (const auto& [k, v] : tyre["results"].items()) results_json["tyre"][k] = v;
   summary["results"] = results_json;

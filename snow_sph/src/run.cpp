@@ -1,5 +1,6 @@
 #include "snow_sph/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -7,6 +8,7 @@
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/participant.hpp"
+#include "snow_sph/rut.hpp"
 #include "snow_sph/scene.hpp"
 #include "snow_sph/solver.hpp"
 
@@ -45,6 +47,46 @@ double surge_front(const Model& m) {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The rut's cells, row by row (y, then x along the row): those that held
+// particles at step 0 and hold some now.
+void write_rut_csv(const std::string& path, const RutGrid& grid, const RutSurface& rut) {
+  cosim::CsvWriter csv(path, {"x_m", "y_m", "top_z_m", "lowering_m"});
+  for (std::size_t j = 0; j < grid.ny; ++j)
+    for (std::size_t i = 0; i < grid.nx; ++i) {
+      const std::size_t c = i + grid.nx * j;
+      if (!std::isnan(rut.lowering_m[c]))
+        csv.row({grid.centre_x_m(i), grid.centre_y_m(j), rut.top_z_m[c], rut.lowering_m[c]});
+    }
+}
+
+// The rut's map (lowering in mm) and, if the grid spans y = 0, the top surface
+// along x in the row of cells through y = 0, at step 0 and now. Listed under
+// summary "plots" when drawn.
+void plot_rut(cosim::RunRecord& record, const std::string& scene, const RutGrid& grid) {
+  const std::string csv = record.path("rut_surface.csv");
+  cosim::PlotOptions map;
+  map.title = scene + ": lowering of the top particle centres [mm]";
+  map.x_label = "x [m]", map.y_label = "y [m]", map.colour_label = "mm";
+  // Equal scales unless the terrain is a slice (a plane-strain strip), where
+  // they would draw a line; its rut is read from the profile.
+  map.height_px = 700, map.equal_axes = 5 * std::min(grid.nx, grid.ny) >= std::max(grid.nx, grid.ny);
+  if (cosim::plot_png(record.path("rut_surface.png"), map, {{csv, "1:2:($4*1000)", "points pt 5 ps 1.2 palette", ""}}))
+    record.summary()["plots"].push_back("rut_surface.png");
+  const double rows = std::floor(-grid.y0_m / grid.cell_m);
+  if (!(rows >= 0 && rows < static_cast<double>(grid.ny))) return;
+  // The row's cells by their centre's y, within a quarter cell (the CSV's 10 digits).
+  const std::string y = cosim::number_text(grid.centre_y_m(static_cast<std::size_t>(rows)));
+  const std::string near = "abs($2 - (" + y + ")) < " + cosim::number_text(0.25 * grid.cell_m);
+  cosim::PlotOptions profile;
+  profile.title = scene + ": top particle centres along x at y = " + y + " m";
+  profile.x_label = "x [m]", profile.y_label = "z [mm]";
+  profile.extra_commands = "set key bottom right\n";  // the undisturbed top runs along the upper edge
+  if (cosim::plot_png(record.path("rut_profile.png"), profile,
+                      {{csv, "1:(" + near + " ? ($3 + $4)*1000 : 1/0)", "lines lw 2", "step 0"},
+                       {csv, "1:(" + near + " ? $3*1000 : 1/0)", "lines lw 2", "end of run"}}))
+    record.summary()["plots"].push_back("rut_profile.png");
 }
 
 // The SPH terrain under the run skeleton (cosim/participant.hpp): on its own
@@ -102,6 +144,10 @@ class SphRun final : public cosim::Participant {
   double probe_sum_ = 0.0, probe_time_ = 0.0, probe_from_ = 0.0, last_dt_ = 0.0;
   double next_csv_ = 0.0, next_vtk_ = 0.0, csv_interval_ = 0.0, vtk_interval_ = 0.0;
   double floor_x_ = 0.0, floor_y_ = 0.0;
+  // Coupled: the terrain's top at step 0 per plan cell, and the deepest
+  // penetration of a particle into the surface over the exchanges so far.
+  RutGrid rut_grid_;
+  double particle_radius_m_ = 0.0, max_penetration_m_ = 0.0;
 };
 
 double SphRun::initialize(cosim::RunRecord& record) {
@@ -147,9 +193,12 @@ double SphRun::initialize(cosim::RunRecord& record) {
   floor_y_ = 0.5 * (model.container_min[1] + model.container_max[1]);
 
   if (port_) {
+    const Particles& p = model.particles;
+    rut_grid_ = make_rut_grid(p.n_real, p.x.data(), p.y.data(), p.z.data(), model.settings.spacing);
     const auto& c = scene_.coupling();
     SurfaceContactParameters contact;
     contact.particle_radius_m = 0.5 * model.settings.spacing;
+    particle_radius_m_ = contact.particle_radius_m;
     contact.stiffness_N_per_m = model.settings.contact_stiffness * c.contact_stiffness_scale();
     solver_->couple(contact);
     // A particle still moving faster than 1 cm/s stays in the active domain
@@ -200,6 +249,7 @@ bool SphRun::exchange_surface(std::uint64_t exchange) {
   if (state) assemble_contact_surface(port_->topology(), *state, surface_, compact_scratch_);
   solver_->contact_surface(state ? &surface_ : nullptr, exchange);
   if (!state) return false;
+  max_penetration_m_ = std::max(max_penetration_m_, solver_->surface_loads().max_penetration_m);
   sparse_surface_loads(*state, solver_->surface_loads(), loads_out_);
   const auto t1 = std::chrono::steady_clock::now();
   port_->send_loads(loads_out_);
@@ -352,6 +402,14 @@ void SphRun::finalize(cosim::RunRecord& record) {
     summary["surface_impulse_on_particles_Ns"] = {impulse[0], impulse[1], impulse[2]};
   }
   nlohmann::json& results = record.results();
+  if (port_ && particle_radius_m_ > 0.0) {
+    // The rut and the deepest penetration (docs/outputs.md), for every coupled run.
+    const RutSurface rut = rut_surface(rut_grid_, p.n_real, p.x.data(), p.y.data(), p.z.data());
+    write_rut_csv(record.path("rut_surface.csv"), rut_grid_, rut);
+    results["rut_depth_m"] = rut.rut_depth_m;
+    results["max_penetration_m"] = max_penetration_m_;
+    results["particle_radius_m"] = particle_radius_m_;
+  }
   for (const auto& b : model.bodies) {
     results[b.name + "_displacement_m"] = b.z0 - b.z;
     results[b.name + "_velocity_z_m_per_s"] = b.vz;
@@ -389,6 +447,7 @@ void SphRun::finalize(cosim::RunRecord& record) {
 void SphRun::plots(cosim::RunRecord& record) {
   if (!energy_csv_) return;
   const std::string name = scene_.name();
+  if (port_ && record.results().contains("rut_depth_m")) plot_rut(record, name, rut_grid_);
   record.plot("energy.csv", "energy.png", 1, {{2, "kinetic"}, {3, "internal"}, {6, "viscous"}, {8, "external work"}},
               name + ": energy", "time [s]", "energy [J]");
   if (bodies_csv_)
