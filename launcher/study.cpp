@@ -13,19 +13,20 @@
 #include "coupler/scene_checks.hpp"
 #include "snow_sph/scene.hpp"
 #include "tyre_fe/scene.hpp"
+#include "tyre_fe/tread_block.hpp"
 
 namespace cosim {
 
 std::vector<std::string> participants(const scene::Scene& scene) {
   if (scene.has_tyre() && scene.coupling().terrain() == "rigid_road") return {"tyre_fe"};
-  if (scene.has_sph() && scene.has_tyre()) {
+  if (scene.has_sph() && has_fe_body(scene)) {
     if (scene.coupling().terrain().empty())
-      throw Error("scene '" + scene.name() + "' has a tyre and an SPH terrain but no `coupling { terrain: ... }`");
+      throw Error("scene '" + scene.name() + "' has an FE body and an SPH terrain but no `coupling { terrain: ... }`");
     return {"coupler", "snow_sph", "tyre_fe"};
   }
   if (scene.has_tyre()) return {"tyre_fe"};
   if (scene.has_sph()) return {"snow_sph"};
-  throw Error("scene '" + scene.name() + "' has nothing to run (no `sph` terrain, no `tyre`)");
+  throw Error("scene '" + scene.name() + "' has nothing to run (no `sph` terrain, no `tyre` or `tread_block`)");
 }
 
 void check_scene(const LoadedScene& scene) {
@@ -33,6 +34,7 @@ void check_scene(const LoadedScene& scene) {
   // A tyre on the rigid road ignores the scene's terrain blocks.
   if (scene.message.coupling().terrain() != "rigid_road") snow_sph::validate_sph_scene(scene, report);
   tyre_fe::validate_tyre_scene(scene, report);
+  tyre_fe::validate_tread_block_scene(scene, report);
   coupler::validate_coupling_scene(scene, report);
   report.throw_if_failed();
 }

@@ -311,4 +311,17 @@ std::unique_ptr<LoadedStudy> load_study(const std::string& path) {
   return loaded;
 }
 
+bool has_fe_body(const scene::Scene& scene) { return scene.has_tyre() || scene.has_tread_block(); }
+
+double planned_end_time_s(const scene::Scene& scene) {
+  if (scene.has_tread_block()) {
+    const auto& b = scene.tread_block();
+    // tyre_fe::PushPath: down by the gap and the depth at the speed, ramped in and out, then held.
+    const double v = b.push_speed_m_per_s();
+    return (v > 0 ? (b.initial_gap_m() + b.push_depth_m()) / v : 0.0) + b.push_ramp_time_s() + b.hold_s();
+  }
+  const auto& st = scene.tyre().stages();
+  return st.transfer_check_s() + st.loading_s() + st.rolling_s();
+}
+
 }  // namespace cosim

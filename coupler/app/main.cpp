@@ -26,8 +26,8 @@ int main(int argc, char** argv) {
   cosim::install_interrupt_handler();
   try {
     const auto scene = cosim::load_scene(scene_file, sets);
-    if (!scene->message.has_tyre() || !scene->message.has_sph())
-      throw cosim::Error(scene_file + ": the coupler needs a scene with a `tyre` and an `sph` terrain");
+    if (!cosim::has_fe_body(scene->message) || !scene->message.has_sph())
+      throw cosim::Error(scene_file + ": the coupler needs a scene with a `tyre` (or a `tread_block`) and an `sph` terrain");
     cosim::coupling::Session session(coupling.session(cosim::transport::Role::coupler, scene->message));
     try {
       const auto summary = coupler::run_hub(session, *scene, {out_dir, quiet});

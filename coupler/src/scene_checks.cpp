@@ -19,7 +19,7 @@ void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::Validation
   const auto loc = loaded.locator().child("coupling");
   if (c.terrain().empty())
     r.fail(loc.where("terrain"), "name the terrain: a material file (e.g. \"../materials/snow_soft.textproto\") or \"rigid_road\"");
-  if (!scene.has_tyre()) r.fail(loc.where("terrain"), "a coupled scene needs a `tyre`");
+  if (!cosim::has_fe_body(scene)) r.fail(loc.where("terrain"), "a coupled scene needs a `tyre` or a `tread_block`");
   if (c.terrain() != "rigid_road" && !c.terrain().empty() && !scene.has_sph())
     r.fail(loc.where("terrain"), "terrain '" + c.terrain() + "' needs an `sph` section with the terrain's blocks");
   for (const char* f : {"contact_band_m", "initial_gap_m", "step_timeout_s", "start_timeout_s", "rolling_radius_m",
@@ -50,7 +50,7 @@ void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::Validation
     r.fail(loaded.locator().child("sph").child("blocks", 0).child("region").child("max").where("z"),
            "the terrain surface of a coupled scene is the plane z = 0: the highest block must end at z = 0 (got " +
                num(top) + ")");
-  if (scene.tyre().stages().loading_s() <= 0)
+  if (scene.has_tyre() && scene.tyre().stages().loading_s() <= 0)
     r.fail(loaded.locator().child("tyre").child("stages").where("loading_s"),
            "a coupled run loads the tyre onto the terrain: give loading_s > 0");
 }

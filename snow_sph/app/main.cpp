@@ -38,11 +38,12 @@ int main(int argc, char** argv) {
       return 0;
     }
     const std::string terrain = scene->message.coupling().terrain();
-    if (!coupling.coupled && scene->message.has_tyre() && scene->message.has_sph() && terrain != "rigid_road")
-      throw cosim::Error(scene_file + ": this scene couples the tyre to an SPH terrain; run it with `cosim run` "
+    if (!coupling.coupled && cosim::has_fe_body(scene->message) && scene->message.has_sph() && terrain != "rigid_road")
+      throw cosim::Error(scene_file + ": this scene couples an FE body to an SPH terrain; run it with `cosim run` "
                          "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
     if (coupling.coupled) {
-      if (!scene->message.has_tyre()) throw cosim::Error(scene_file + ": a coupled terrain needs a scene with a `tyre`");
+      if (!cosim::has_fe_body(scene->message))
+        throw cosim::Error(scene_file + ": a coupled terrain needs a scene with a `tyre` or a `tread_block`");
       cosim::coupling::Session session(coupling.session(cosim::transport::Role::terrain, scene->message));
       snow_sph::DdsSurfaceExchange exchange(session);
       snow_sph::RunOptions options{out_dir, quiet, !no_vtk};

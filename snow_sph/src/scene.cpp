@@ -57,7 +57,7 @@ void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepor
   if (scene.name().empty()) r.fail(root.where("name"), "a scene needs a name");
   const auto time = root.child("time");
   // A coupled terrain runs until the tyre ends the run (the tyre's stages set the time).
-  if (scene.has_sph() && !scene.has_tyre() && !(scene.time().end_time_s() > 0))
+  if (scene.has_sph() && !cosim::has_fe_body(scene) && !(scene.time().end_time_s() > 0))
     r.fail(time.where("end_time_s"), "must be > 0 (got " + num(scene.time().end_time_s()) + ")");
   if (!(scene.time().cfl() > 0 && scene.time().cfl() <= 1.0))
     r.fail(time.where("cfl"), "must be in (0, 1] (got " + num(scene.time().cfl()) + ")");

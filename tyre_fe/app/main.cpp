@@ -14,6 +14,7 @@
 #include "cosim/interrupt.hpp"
 #include "tyre_fe/run.hpp"
 #include "tyre_fe/scene.hpp"
+#include "tyre_fe/tread_block.hpp"
 #include "dds_terrain_port.hpp"
 
 int main(int argc, char** argv) {
@@ -36,14 +37,15 @@ int main(int argc, char** argv) {
     const auto scene = cosim::load_scene(scene_file, sets);
     cosim::ValidationReport report;
     tyre_fe::validate_tyre_scene(*scene, report);
-    if (!scene->message.has_tyre()) report.fail(scene_file, "the scene has no `tyre` section");
+    tyre_fe::validate_tread_block_scene(*scene, report);
+    if (!cosim::has_fe_body(scene->message)) report.fail(scene_file, "the scene has no `tyre` or `tread_block` section");
     report.throw_if_failed();
     if (check) {
       std::printf("%s: ok\n", scene_file.c_str());
       return 0;
     }
     const std::string terrain = scene->message.coupling().terrain();
-    if (!coupling.coupled && scene->message.has_tyre() && scene->message.has_sph() && terrain != "rigid_road")
+    if (!coupling.coupled && cosim::has_fe_body(scene->message) && scene->message.has_sph() && terrain != "rigid_road")
       throw cosim::Error(scene_file + ": this scene couples the tyre to an SPH terrain; run it with `cosim run` "
                          "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
     if (coupling.coupled) {
@@ -52,7 +54,8 @@ int main(int argc, char** argv) {
       tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
       options.terrain = &port;
       try {
-        const auto summary = tyre_fe::run_tyre_scene(*scene, options);
+        const auto summary = scene->message.has_tread_block() ? tyre_fe::run_tread_block_scene(*scene, options)
+                                                              : tyre_fe::run_tyre_scene(*scene, options);
         cosim::print_results(summary);
         return 0;
       } catch (const std::exception& e) {

@@ -64,8 +64,8 @@ std::vector<double> contact_pressure_Pa(const Model3d& model, const State3d& s) 
   return p;
 }
 
-FrameWriter::FrameWriter(std::string folder, double interval_s)
-    : interval_s_(interval_s), tyre_frames_(folder, "tyre"), surface_frames_(folder, "surface") {}
+FrameWriter::FrameWriter(std::string folder, double interval_s, const std::string& body)
+    : interval_s_(interval_s), body_frames_(folder, body), surface_frames_(folder, "surface") {}
 
 void FrameWriter::maybe_write(const Model3d& model, const State3d& s) {
   if (interval_s_ <= 0.0 || s.time_s < next_s_) return;
@@ -84,7 +84,7 @@ void FrameWriter::write(const Model3d& model, const State3d& s) {
     displacement.values.insert(displacement.values.end(), {u.x(), u.y(), u.z()});
     velocity.values.insert(velocity.values.end(), {s.vx[i], s.vy[i], s.vz[i]});
   }
-  tyre_frames_.write(s.time_s, vtk_mesh(model.mesh, x, {displacement, velocity}));
+  body_frames_.write(s.time_s, vtk_mesh(model.mesh, x, {displacement, velocity}));
   surface_frames_.write(s.time_s, vtk_facets(model.mesh, x, {facet_pressure(model, s)}));
 }
 

@@ -1,12 +1,10 @@
 #include "tyre_fe/run.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
-#include "cosim/coupling_window.hpp"
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/ramp.hpp"
@@ -46,10 +44,6 @@ nlohmann::json energy_json(const Energies& e) {
           {"damping_work_J", e.damping_work_J}, {"contact_work_J", e.contact_work_J},
           {"initial_J", e.initial_J},           {"relative_error", e.balance_error()},
           {"note", "balance = KE + IE - E0 - W_ext - W_damping - W_contact, relative to max(IE, KE, |W_ext|)"}};
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // The tyre under the run skeleton (cosim/participant.hpp): axisymmetric
@@ -233,24 +227,8 @@ double TyreRun::initialize(cosim::RunRecord& record) {
 // at t_n goes out before the element forces, so that the terrain works on it
 // meanwhile; its loads of t_n come back after them and are held over the window.
 void TyreRun::step(const RimDrive& drive) {
-  TerrainCoupling& terrain = s_.terrain;
-  const bool window_start = joined_ && terrain.substep == 0;
-  if (window_start) {  // exchange, out
-    const auto t0 = std::chrono::steady_clock::now();
-    surface_near_terrain(terrain.surface, s_, terrain.band_m, terrain.sent);
-    port_->send(terrain.sent, s_.rim);
-    commit_window_impulse(terrain);
-    exchange_s_ += seconds_since(t0);
-  }
-  compute_forces(*model_, s_);
-  if (window_start) {  // exchange, in
-    const auto t0 = std::chrono::steady_clock::now();
-    port_->receive(terrain.exchange, terrain.loads);
-    terrain.load_totals = cosim::totals(terrain.loads);
-    exchange_s_ += seconds_since(t0);
-  }
-  if (joined_) add_terrain_loads(s_);
-  if (!integrate(*model_, s_, drive))
+  if (joined_) return step_on_terrain(*model_, s_, *port_, drive, exchange_s_);
+  if (!step3d(*model_, s_, drive))
     throw cosim::Error("non-finite state at t = " + cosim::number_text(s_.time_s) + " s (step " +
                        std::to_string(s_.step) + ")");
 }
@@ -343,9 +321,7 @@ void TyreRun::join_terrain() {
                  s_.terrain.surface.facet_count());
   // The coupler answers with the coupling window; the tyre fills it with
   // equal sub-steps no larger than its own stable step (one in the common-step scheme).
-  const double window = port_->connect(s_.terrain.surface, s_.dt_s);
-  s_.terrain.substeps = cosim::substeps_per_window(window, s_.dt_s);
-  s_.dt_s = s_.terrain.substeps == 1 ? window : window / s_.terrain.substeps;
+  const double window = connect_to_terrain(*port_, s_);
   s_.time_stages = true;  // the exchange's share of the wall time (summary "performance")
   joined_ = true;
   coupled_from_step_ = s_.step;

@@ -1,12 +1,16 @@
 #include "tyre_fe/solver3d.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <string>
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <omp.h>
 
+#include "cosim/coupling_window.hpp"
+#include "cosim/error.hpp"
 #include "cosim/parallel.hpp"
 #include "cosim/penalty_contact.hpp"
 #include "cosim/quad_facet.hpp"
@@ -188,10 +192,12 @@ double rim_update(const Model3d& m, State3d& s, const RimDrive& d) {
   const double vx_new = d.hold_x ? 0.0 : d.forward_speed_m_per_s;
   power += (rim.mass_kg * (vx_new - rim.vx) / dt - fx) * 0.5 * (vx_new + rim.vx);
   rim.vx = vx_new;
-  // z: free under the wheel load (with the relaxation damping) or held.
+  // z: free under the wheel load (with the relaxation damping), held or prescribed;
+  // the reaction of a held or prescribed motion does work, as in x.
   const double vz_old = rim.vz;
-  if (d.hold_z) {
-    rim.vz = 0.0;
+  if (d.hold_z || d.prescribe_vz) {
+    rim.vz = d.prescribe_vz ? d.vertical_speed_m_per_s : 0.0;
+    power += (rim.mass_kg * (rim.vz - vz_old) / dt - fz + d.wheel_load_N) * 0.5 * (rim.vz + vz_old);
   } else {
     const double damping = -s.damping_per_s * rim.mass_kg * rim.vz;
     rim.vz += dt * (fz - d.wheel_load_N + damping) / rim.mass_kg;
@@ -261,6 +267,39 @@ void compute_forces(const Model3d& m, State3d& s) {
 bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
   compute_forces(m, s);
   return integrate(m, s, drive);
+}
+
+double connect_to_terrain(TerrainPort& port, State3d& s) {
+  const double window = port.connect(s.terrain.surface, s.dt_s);
+  s.terrain.substeps = cosim::substeps_per_window(window, s.dt_s);
+  s.dt_s = window / s.terrain.substeps;
+  return window;
+}
+
+void step_on_terrain(const Model3d& m, State3d& s, TerrainPort& port, const RimDrive& drive, double& exchange_s) {
+  TerrainCoupling& terrain = s.terrain;
+  const bool window_start = terrain.substep == 0;
+  auto since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  if (window_start) {  // exchange, out
+    const auto t0 = std::chrono::steady_clock::now();
+    surface_near_terrain(terrain.surface, s, terrain.band_m, terrain.sent);
+    port.send(terrain.sent, s.rim);
+    commit_window_impulse(terrain);
+    exchange_s += since(t0);
+  }
+  compute_forces(m, s);
+  if (window_start) {  // exchange, in
+    const auto t0 = std::chrono::steady_clock::now();
+    port.receive(terrain.exchange, terrain.loads);
+    terrain.load_totals = cosim::totals(terrain.loads);
+    exchange_s += since(t0);
+  }
+  add_terrain_loads(s);
+  if (!integrate(m, s, drive))
+    throw cosim::Error("non-finite state at t = " + cosim::number_text(s.time_s) + " s (step " +
+                       std::to_string(s.step) + ")");
 }
 
 bool integrate(const Model3d& m, State3d& s, const RimDrive& drive) {

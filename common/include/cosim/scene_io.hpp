@@ -85,6 +85,12 @@ void parse_text_file(const std::string& path, google::protobuf::Message& message
 // Sets one field given "a.b[2].c=value" (as the command line does).
 void apply_override(google::protobuf::Message& root, const std::string& assignment);
 
+// The FE body of a scene: a tyre or a tread block (tyre_fe runs either).
+bool has_fe_body(const scene::Scene& scene);
+// When the FE body's stages end [s] (the run's end in a coupled scene): a tyre's
+// transfer check, loading and rolling; a tread block's push and hold.
+double planned_end_time_s(const scene::Scene& scene);
+
 std::string read_file(const std::string& path);
 std::string folder_of(const std::string& path);
 

@@ -21,18 +21,19 @@ void write_mesh_vtk(const std::string& path, const Mesh3D& mesh, const std::vect
 void write_facets_vtk(const std::string& path, const Mesh3D& mesh, const std::vector<Eigen::Vector3d>& positions);
 
 // Frames of the 3D model every `interval_s` of simulated time (0: none):
-// tyre_NNNNN.vtk (hexahedra; displacement, velocity) and surface_NNNNN.vtk
-// (tagged facets; contact pressure), indexed by tyre.vtk.series / surface.vtk.series.
+// BODY_NNNNN.vtk (hexahedra; displacement, velocity) and surface_NNNNN.vtk
+// (tagged facets; contact pressure), indexed by BODY.vtk.series / surface.vtk.series;
+// BODY is "tyre" or "tread_block".
 class FrameWriter {
  public:
-  FrameWriter(std::string folder, double interval_s);
+  FrameWriter(std::string folder, double interval_s, const std::string& body = "tyre");
   void maybe_write(const Model3d& model, const State3d& s);
   void write(const Model3d& model, const State3d& s);
 
  private:
   double interval_s_, next_s_ = 0.0;
   double last_written_s_ = -1.0;
-  cosim::vtk::Series tyre_frames_, surface_frames_;
+  cosim::vtk::Series body_frames_, surface_frames_;
 };
 
 // Contact pressure per contact node [Pa] = normal force / tributary area.

@@ -27,4 +27,7 @@ struct RunOptions {
 // far are kept, and cosim::Error is rethrown.
 nlohmann::json run_tyre_scene(const cosim::LoadedScene& scene, const RunOptions& options);
 
+// The same for a scene's `tread_block` (tread_block.hpp): on a terrain solver only.
+nlohmann::json run_tread_block_scene(const cosim::LoadedScene& scene, const RunOptions& options);
+
 }  // namespace tyre_fe

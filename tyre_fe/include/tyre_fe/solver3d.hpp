@@ -28,7 +28,9 @@ struct RimDrive {
   double angular_velocity_rad_per_s = 0.0;
   double drive_torque_Nm = 0.0;    // ... or free with this torque about y
   double wheel_load_N = 0.0;       // downward force on the rim node
-  bool hold_z = false;             // z fixed (check at rest after the transfer)
+  bool hold_z = false;             // z fixed (check at rest after the transfer) ...
+  bool prescribe_vz = false;       // ... or moving at this vertical speed (a pushed tread block)
+  double vertical_speed_m_per_s = 0.0;
 };
 
 struct RimState {
@@ -148,6 +150,18 @@ void commit_window_impulse(TerrainCoupling& t);
 bool integrate(const Model3d& model, State3d& s, const RimDrive& drive);
 // compute_forces + integrate: one step of the tyre on its own (rigid road).
 bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
+
+// Joins a terrain solver: offers s.terrain.surface and the stable step s.dt_s
+// through the port, and fills the coupling window the coupler answers with equal
+// sub-steps no larger than the stable step (s.dt_s, s.terrain.substeps). Returns the window.
+double connect_to_terrain(TerrainPort& port, State3d& s);
+// One step on a terrain (docs/coupling.md): at a coupling window's start
+//   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
+// so that the terrain works on the surface while the element forces are computed;
+// on the window's other sub-steps  compute_forces -> add_terrain_loads -> integrate.
+// Adds the wall time of the exchange to exchange_s; throws cosim::Error if the state
+// went non-finite or the terrain is gone.
+void step_on_terrain(const Model3d& model, State3d& s, TerrainPort& port, const RimDrive& drive, double& exchange_s);
 
 // Kinetic damping (Cundall 1976; Underwood 1983): sets every velocity (nodes and
 // rim) to zero. Called when the kinetic energy has passed a peak, it drains the

@@ -1,0 +1,56 @@
+#pragma once
+// A tread block as an FE body of its own (thesis 3.4, the tread indentation;
+// scene `tread_block`): a hexahedral mesh of ribs over a solid base, its top
+// face held by a reference node that pushes it into the terrain along a
+// prescribed path. The mesh is a Mesh3D, so the tyre's model, explicit step
+// and terrain port (model3d.hpp, solver3d.hpp, terrain_port.hpp) run it as
+// they run the tyre: the top nodes are the "rim" nodes.
+#include <vector>
+
+#include "cosim/scene_io.hpp"
+#include "tyre_fe/axisym.hpp"
+#include "tyre_fe/mesh.hpp"
+
+namespace tyre_fe {
+
+struct TreadBlockGeometry {
+  double length_x_m = 0.0, width_y_m = 0.0;
+  double base_thickness_m = 0.0, groove_depth_m = 0.0;
+  std::vector<double> groove_x_m;  // groove centres; grooves run along y
+  double groove_width_m = 0.0;
+  double element_size_m = 0.0;
+  bool slice_in_y = false;  // no facets on the faces normal to y
+};
+
+// Hexahedra on a grid whose x lines include every groove edge; the ribs' faces
+// at z = face_z_m, the top at face_z_m + groove_depth + base. Facet tags: the
+// ribs' faces tread_top, the grooves' walls groove_wall and floors
+// groove_bottom, the x ends shoulder, the y sides other (none if slice_in_y),
+// the top rim_contact (held by the reference node, no contact). rim_nodes: the
+// top face's nodes.
+Mesh3D make_tread_block_mesh(const TreadBlockGeometry& g, double face_z_m);
+
+// The reference node's path: down by total_m (from the start gap to the
+// depth) at speed v, the speed ramped in and out over ramp_s each with a
+// smoothstep (cosim/ramp.hpp), so the displacement is
+//   d(t) = v T (u^3 - u^4 / 2), u = t / T          while ramping in,
+// then linear, then mirrored about the end; held at total_m afterwards.
+struct PushPath {
+  double total_m = 0.0, speed_m_per_s = 0.0, ramp_s = 0.0;
+  double end_s() const;  // when total_m is reached: total / v + ramp
+};
+double push_displacement_m(const PushPath& p, double t_s);
+
+// Everything the block run needs, from a validated scene.
+struct TreadBlockSetup {
+  TreadBlockGeometry geometry;
+  TyreMaterials materials;  // the block's material in Region::tread
+  PushPath path;
+  double initial_gap_m = 0.0, push_depth_m = 0.0, hold_s = 0.0;
+  double reference_node_mass_kg = 0.0;
+};
+// Ranges and rules, each failure naming the scene's file, line and field.
+void validate_tread_block_scene(const cosim::LoadedScene& scene, cosim::ValidationReport& report);
+TreadBlockSetup tread_block_setup(const cosim::LoadedScene& scene);
+
+}  // namespace tyre_fe

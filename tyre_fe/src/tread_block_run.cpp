@@ -1,0 +1,158 @@
+// A tread block pushed into the terrain (thesis 3.4) under the run skeleton
+// (cosim/participant.hpp): the block's mesh and model in initialize(), then
+// steps of the tyre's explicit stages (solver3d.hpp) with the same exchange as
+// the tyre's (run.cpp): at a coupling window's start
+//   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
+// the reference node (the "rim") moving the top face down along the push path.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "cosim/error.hpp"
+#include "cosim/participant.hpp"
+#include "tyre_fe/model3d.hpp"
+#include "tyre_fe/outputs.hpp"
+#include "tyre_fe/run.hpp"
+#include "tyre_fe/solver3d.hpp"
+#include "tyre_fe/tread_block.hpp"
+
+namespace tyre_fe {
+namespace {
+
+class TreadBlockRun final : public cosim::Participant {
+ public:
+  TreadBlockRun(const cosim::LoadedScene& loaded, const RunOptions& options)
+      : loaded_(loaded), options_(options), port_(options.terrain) {}
+
+  double initialize(cosim::RunRecord& record) override;
+  bool advance() override;
+  double time_s() const override { return s_.time_s; }
+  std::uint64_t steps() const override { return s_.step; }
+  void output(cosim::RunRecord& record) override;
+  void finalize(cosim::RunRecord& record) override;
+  void finish_peers() override { port_->finish(false, ""); }
+  void abort(const std::string& reason) noexcept override {
+    failed_ = true;
+    try {
+      port_->finish(true, reason);
+    } catch (const std::exception&) {
+      // The peers learn of the failure by their time-out instead.
+    }
+  }
+  void plots(cosim::RunRecord& record) override {
+    if (!csv_) return;
+    record.plot("tread_block.csv", "tread_block_force.png", 3, {{6, "terrain on the block, vertical"}},
+                loaded_.message.name() + ": force against the ribs' depth", "depth of the ribs' faces below the snow [m]",
+                "force [N]");
+  }
+
+ private:
+  // Lowest point of the ribs' faces below the terrain surface z = 0 [m] (the reference node's path).
+  double face_depth_m() const { return displacement_m() - setup_.initial_gap_m; }
+  double displacement_m() const { return -s_.rim.z; }
+
+  const cosim::LoadedScene& loaded_;
+  RunOptions options_;
+  TerrainPort* port_;
+  cosim::RunRecord* record_ = nullptr;
+  TreadBlockSetup setup_;
+  std::unique_ptr<Model3d> model_;
+  State3d s_;
+  std::unique_ptr<FrameWriter> frames_;
+  cosim::CsvWriter* csv_ = nullptr;
+  double end_s_ = 0.0, next_csv_ = 0.0, csv_interval_ = 0.0, exchange_s_ = 0.0;
+  double max_force_z_N_ = 0.0;
+  bool failed_ = false;
+};
+
+double TreadBlockRun::initialize(cosim::RunRecord& record) {
+  record_ = &record;
+  if (!port_) throw cosim::Error("a tread block runs on a terrain solver only: start it with `cosim run`");
+  setup_ = tread_block_setup(loaded_);
+  const auto& scene = loaded_.message;
+  // The ribs' faces start initial_gap_m above the terrain surface z = 0.
+  Mesh3D mesh = make_tread_block_mesh(setup_.geometry, setup_.initial_gap_m);
+  nlohmann::json& summary = record.summary();
+  nlohmann::json& results = record.results();
+  results["nodes"] = mesh.nodes.size();
+  results["elements"] = mesh.hexes.size();
+  results["facets"] = mesh.facets.size();
+  summary["elements"] = mesh.hexes.size();
+  if (options_.write_vtk) write_facets_vtk(record.path("surface.vtk"), mesh, mesh.nodes);
+  Model3dOptions mo;
+  mo.time_step_safety = scene.time().cfl() > 0 ? scene.time().cfl() : 0.8;
+  model_ = std::make_unique<Model3d>(build_model3d(std::move(mesh), setup_.materials, CrossSection{}, mo));
+  const Model3d& model = *model_;
+  summary["time_step"] = {{"stable_dt_s", model.stable_dt_s}, {"mass_kg", model.physical_mass_kg}};
+  s_ = make_state3d(model, model.mesh.nodes, setup_.reference_node_mass_kg, 0.0);
+  s_.rim.inertia_kg_m2 = 1.0;  // the spin is held at 0: any positive inertia
+  s_.road.height_m = 0.0;      // heights are measured from the terrain surface
+  s_.terrain.surface = make_contact_surface(model, s_);
+  s_.terrain.band_m = scene.coupling().contact_band_m();
+  csv_ = &record.series("tread_block.csv", {"time_s", "reference_displacement_m", "face_depth_m",
+                                            "terrain_force_x_N", "terrain_force_y_N", "terrain_force_z_N",
+                                            "contact_area_m2", "holder_force_z_N", "kinetic_J", "internal_J",
+                                            "energy_balance_error"});
+  csv_interval_ = scene.output().csv_interval_s();
+  frames_ = std::make_unique<FrameWriter>(record.out_dir(), options_.write_vtk ? scene.output().vtk_interval_s() : 0.0,
+                                          "tread_block");
+  if (!options_.quiet)
+    std::fprintf(stderr, "[%s] tread block: %zu hexahedra, joining the terrain and the coupler (%zu surface facets)\n",
+                 scene.name().c_str(), model.mesh.hexes.size(), s_.terrain.surface.facet_count());
+  const double window = connect_to_terrain(*port_, s_);
+  summary["coupled_dt_s"] = s_.dt_s;
+  summary["coupling_window_s"] = window;
+  summary["tyre_substeps"] = s_.terrain.substeps;
+  end_s_ = setup_.path.end_s() + setup_.hold_s;
+  return end_s_;
+}
+
+bool TreadBlockRun::advance() {
+  if (!(s_.time_s < end_s_ - 0.5 * s_.dt_s)) return false;
+  // The reference node moves from d(t) to d(t + dt) in this step: the path is met exactly at every step.
+  RimDrive drive;
+  drive.prescribe_vz = true;
+  drive.vertical_speed_m_per_s =
+      -(push_displacement_m(setup_.path, s_.time_s + s_.dt_s) - push_displacement_m(setup_.path, s_.time_s)) / s_.dt_s;
+  step_on_terrain(*model_, s_, *port_, drive, exchange_s_);
+  max_force_z_N_ = std::max(max_force_z_N_, s_.terrain.load_totals.force_N[2]);
+  return true;
+}
+
+void TreadBlockRun::output(cosim::RunRecord&) {
+  if (s_.time_s >= next_csv_) {
+    const auto& f = s_.terrain.load_totals.force_N;
+    csv_->row({s_.time_s, displacement_m(), face_depth_m(), f[0], f[1], f[2], s_.terrain.load_totals.contact_area_m2,
+               -s_.rim.tyre_force_z_N, s_.energy.kinetic_J, s_.energy.internal_J, s_.energy.balance_error()});
+    next_csv_ = s_.time_s + csv_interval_;
+  }
+  frames_->maybe_write(*model_, s_);
+}
+
+void TreadBlockRun::finalize(cosim::RunRecord& record) {
+  if (!model_) return;
+  if (!failed_) frames_->write(*model_, s_);
+  nlohmann::json& results = record.results();
+  const auto& f = s_.terrain.load_totals.force_N;
+  results["face_depth_m"] = face_depth_m();
+  results["terrain_force_z_N"] = f[2];
+  results["largest_terrain_force_z_N"] = max_force_z_N_;
+  results["terrain_force_x_N"] = f[0];
+  results["contact_area_m2"] = s_.terrain.load_totals.contact_area_m2;
+  const double* impulse = s_.terrain.impulse_Ns;
+  results["terrain_impulse_Ns"] = {impulse[0], impulse[1], impulse[2]};
+  results["energy_balance_error"] = s_.energy.balance_error();
+  record.summary()["dt_s"] = s_.dt_s;
+  record.summary()["performance"] = {{"steps_per_s", record.wall_s() > 0 ? s_.step / record.wall_s() : 0.0},
+                                     {"exchange_wait_s", exchange_s_}};
+}
+
+}  // namespace
+
+nlohmann::json run_tread_block_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
+  cosim::RunRecord record(loaded, options.out_dir, "tyre_fe");
+  TreadBlockRun run(loaded, options);
+  return cosim::run_participant(run, record, loaded.message.name(), options.quiet);
+}
+
+}  // namespace tyre_fe
