@@ -86,6 +86,16 @@ TEST(Plot, WritesAPngOfTheRequestedSize) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/a.png.gp")) << "the gnuplot script is removed";
 }
 
+// Titles and labels are the user's text: an apostrophe must not end gnuplot's string.
+TEST(Plot, QuotesInTitlesAndLabelsAreDrawn) {
+  if (!gnuplot_present()) GTEST_SKIP() << "gnuplot not installed";
+  const std::string dir = test_support::scratch("plot_quotes");
+  const std::string csv = write_csv(dir, "a.csv", 1.0);
+  EXPECT_TRUE(cosim::plot_csv(csv, dir + "/a.png", 1, {{2, "the block's force"}}, "the ribs' depth", "rib's x",
+                              "it's y"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/a.png"));
+}
+
 // What the study plot and the footprint need: two CSV files in one plot, a log
 // axis, expression columns, labels, a colour map, a chosen size.
 TEST(Plot, SeveralFilesLogAxesAndExpressionsInOnePlot) {

@@ -79,6 +79,13 @@ std::string VtkSeries::write(double time_s, std::size_t n, const double* x, cons
 bool plot_png(const std::string& png, const PlotOptions& o, const std::vector<PlotCurve>& curves) {
   if (curves.empty()) throw Error(png + ": a plot needs at least one curve");
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+  // Text in a gnuplot single-quoted string: a quote is written twice (a title
+  // such as "the ribs' depth" otherwise ends the string and the plot is lost).
+  auto q = [](const std::string& text) {
+    std::string out = "'";
+    for (char ch : text) out += ch == '\'' ? std::string("''") : std::string(1, ch);
+    return out + "'";
+  };
   const std::string script = png + ".gp";
   {
     std::ofstream gp(script);
@@ -87,15 +94,15 @@ bool plot_png(const std::string& png, const PlotOptions& o, const std::vector<Pl
     if (o.equal_axes) gp << "set size ratio -1\n";
     if (o.log_x) gp << "set logscale x\n";
     if (o.log_y) gp << "set logscale y\n";
-    if (!o.colour_label.empty()) gp << "set palette rgb 33,13,10\nset cblabel '" << o.colour_label << "'\n";
+    if (!o.colour_label.empty()) gp << "set palette rgb 33,13,10\nset cblabel " << q(o.colour_label) << "\n";
     if (!o.key) gp << "set key off\n";
-    gp << "set title '" << o.title << "'\nset xlabel '" << o.x_label << "'\nset ylabel '" << o.y_label << "'\n"
+    gp << "set title " << q(o.title) << "\nset xlabel " << q(o.x_label) << "\nset ylabel " << q(o.y_label) << "\n"
        << o.extra_commands << "plot ";
     for (std::size_t k = 0; k < curves.size(); ++k) {
       const auto& c = curves[k];
       gp << (k ? ", " : "") << "'" << c.csv << "' every ::1 using " << c.columns << " with " << c.style;
       if (c.title.empty()) gp << " notitle";
-      else gp << " title '" << c.title << "'";
+      else gp << " title " << q(c.title);
     }
     gp << "\n";
   }

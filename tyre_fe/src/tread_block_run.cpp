@@ -42,7 +42,7 @@ class TreadBlockRun final : public cosim::Participant {
   void plots(cosim::RunRecord& record) override {
     if (!csv_) return;
     record.plot("tread_block.csv", "tread_block_force.png", 3, {{6, "terrain on the block, vertical"}},
-                loaded_.message.name() + ": force against the ribs' depth", "depth of the ribs' faces below the snow [m]",
+                loaded_.message.name() + ": force against the depth of the ribs", "depth of the rib faces below the snow [m]",
                 "force [N]");
   }
 
