@@ -83,6 +83,11 @@ TEST(CoupledRun, CrossVendorTorqueSceneWritesTheDecompositionOfEveryStep) {
   EXPECT_EQ(summary["participants"]["tyre_fe"]["dds"], "fast");
   EXPECT_EQ(summary["rejected_samples"]["other_run"], 0);
   EXPECT_EQ(summary["rejected_samples"]["wrong_step"], 0);
+  // Every step, the facets' pressure and friction parts add up to the force on the
+  // tyre's nodes: the same contact forces summed in another order (round-off ~1e-14
+  // of the force); a pressure part rebuilt along the facet normal at the blocks'
+  // edges was off by a sizeable fraction of the force there.
+  EXPECT_LT(summary["results"]["decomposition_residual_relative"].get<double>(), 1e-9);
   // One row per coupling window; each row satisfies the thesis's identities
   // (eq. 2.1: DP = F2 + F3 - F1 - F5; eq. 2.2: net = -F1 + F2).
   const auto rows = lines_of(dir + "/forces.csv");
@@ -325,5 +330,6 @@ TEST(CoupledRun, TreadBlockLeavesARutWithoutPenetrationAndBalancesMomentum) {
   // No particle centre crosses the tread's surface (thesis 3.4: "without any contact penetration").
   EXPECT_LT(results["max_penetration_m"].get<double>(), results["particle_radius_m"].get<double>());
   EXPECT_GT(results["tyre"]["terrain_force_z_N"].get<double>(), 0.0);
+  EXPECT_LT(results["decomposition_residual_relative"].get<double>(), 1e-9);  // rib edges: as in the torque run
   expect_momentum_balance_of(run, 0.01);
 }

@@ -46,6 +46,11 @@ TEST(CouplerWire, ContactLoadsBecomeFacetLoadsAndASummary) {
   cosim::transport::ContactLoads c;
   c.facets = {2, 0};  // the wall and the first bottom facet
   c.normal_force_N = {50.0, 300.0};
+  // The pressure parts as the terrain sums them: on the wall (normal +x) an edge
+  // contact pushing along (-0.6, 0, 0.8), on the bottom (normal -z) a face contact.
+  c.pressure_x_N = {-30.0, 0.0};
+  c.pressure_y_N = {0.0, 0.0};
+  c.pressure_z_N = {40.0, 300.0};
   c.tangential_x_N = {0.0, 90.0};
   c.tangential_y_N = {0.0, 0.0};
   c.tangential_z_N = {1.0, 0.0};
@@ -53,8 +58,13 @@ TEST(CouplerWire, ContactLoadsBecomeFacetLoadsAndASummary) {
   const auto l = coupler::facet_loads_from_contact(c, s.tags, g);
   ASSERT_EQ(l.size(), 2u);
   EXPECT_EQ(l.tag[0], FacetTag::groove_wall);
-  EXPECT_NEAR(l.pressure_x_N[0], -50.0, 1e-12);  // -N n, n = +x
-  EXPECT_NEAR(l.pressure_z_N[1], 300.0, 1e-12);  // -N n, n = -z: pushes the tyre up
+  // As sent, not -N n (which would give the wall's contact (-50, 0, 0)).
+  EXPECT_EQ(l.pressure_x_N[0], -30.0);
+  EXPECT_EQ(l.pressure_z_N[0], 40.0);
+  EXPECT_EQ(l.pressure_z_N[1], 300.0);  // pushes the tyre up
+  // The parts add up to the total force on the tyre, and a wrong total shows.
+  EXPECT_EQ(coupler::decomposition_residual_N(l, -30.0 + 90.0, 0.0, 40.0 + 1.0 + 300.0), 0.0);
+  EXPECT_NEAR(coupler::decomposition_residual_N(l, 60.0, 0.0, 345.0), 4.0, 1e-12);
   EXPECT_EQ(l.friction_x_N[1], 90.0);
   EXPECT_NEAR(l.centroid_x_m[1], 0.01, 1e-15);
 
@@ -67,9 +77,9 @@ TEST(CouplerWire, ContactLoadsBecomeFacetLoadsAndASummary) {
   const auto sum = coupler::force_summary(d, h);
   EXPECT_EQ(sum.header.step, 12u);
   EXPECT_EQ(sum.traction_force_N, 90.0);
-  EXPECT_NEAR(sum.groove_force_N, -50.0, 1e-12);
+  EXPECT_NEAR(sum.groove_force_N, -30.0, 1e-12);
   EXPECT_EQ(sum.motion_resistance_N, 0.0);
-  EXPECT_NEAR(sum.drawbar_pull_N, 90.0 - 50.0 - sum.rolling_resistance_force_N, 1e-12);
+  EXPECT_NEAR(sum.drawbar_pull_N, 90.0 - 30.0 - sum.rolling_resistance_force_N, 1e-12);
   EXPECT_NEAR(sum.contact_area_m2, 8e-4, 1e-15);
   EXPECT_NEAR(sum.sinkage_m, 0.4, 1e-15);
 

@@ -274,6 +274,23 @@ TEST(SurfaceContact, AConvexEdgePushesAlongTheLineFromTheEdge) {
   EXPECT_NEAR(p.az * kMass, -f / std::sqrt(2.0), 1e-9);
 }
 
+// The facet's pressure part is the force along that line too, not the normal
+// force times the facet's normal (which would put all of it in -z): at a block's
+// edge that is where the groove force and the motion resistance act.
+TEST(SurfaceContact, AnEdgeContactsPressurePartIsAlongTheLineFromTheEdge) {
+  ContactSurface s;
+  add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.0);
+  const double d = 0.6 * kRadius;
+  Particle p{0.01 + d / std::sqrt(2.0), 0.0, -d / std::sqrt(2.0)};
+  const SurfaceContactResult l = contact(s, p);
+  const double f = kStiffness * (kRadius - d);
+  // On the surface: the reaction, -f along the line from the edge to the particle
+  // (to the closest point's rounding, as the force on the particle above).
+  EXPECT_NEAR(l.facet_pressure_x_N[0], -f / std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(l.facet_pressure_y_N[0], 0.0, 1e-9);
+  EXPECT_NEAR(l.facet_pressure_z_N[0], f / std::sqrt(2.0), 1e-9);
+}
+
 // The deepest penetration is radius - d for the particle centre's signed
 // distance d to the facet (or to the edge). The heights are exact here and the
 // facet's normal is exactly -z, so the only error is the rounding of radius - d:
@@ -372,6 +389,17 @@ TEST(SurfaceContact, MomentumIsExchangedExactlyAndFacetSumsMatchNodeSums) {
   EXPECT_NEAR(nx, l.total_fx_N, 1e-12 * scale);
   EXPECT_NEAR(nz, l.total_fz_N, 1e-12 * scale);
   EXPECT_GT(nz, 0.0);  // the particles push the tyre up
+  // The facets' pressure and friction parts add up to the same force (faces, edges
+  // and corners of the scattered surface alike), to the rounding of ~1000 terms.
+  double fx = 0, fy = 0, fz = 0;
+  for (std::size_t f = 0; f < l.facet_pressure_x_N.size(); ++f) {
+    fx += l.facet_pressure_x_N[f] + l.facet_tangential_x_N[f];
+    fy += l.facet_pressure_y_N[f] + l.facet_tangential_y_N[f];
+    fz += l.facet_pressure_z_N[f] + l.facet_tangential_z_N[f];
+  }
+  EXPECT_NEAR(fx, nx, 1e-12 * scale);
+  EXPECT_NEAR(fy, ny, 1e-12 * scale);
+  EXPECT_NEAR(fz, nz, 1e-12 * scale);
 }
 
 TEST(SurfaceContact, ResultDoesNotDependOnTheThreadCount) {

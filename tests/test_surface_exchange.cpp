@@ -117,6 +117,8 @@ TEST(SurfaceExchange, EachLoadComesBackToTheNodeItWasComputedFor) {
   }
   result.particles_in_contact = {3, 0};
   result.facet_normal_force_N = {12.0, 0.0};
+  result.facet_pressure_x_N = {-3.0, 0.0}, result.facet_pressure_y_N = {0.0, 0.0};
+  result.facet_pressure_z_N = {11.0, 0.0};
   result.facet_tangential_x_N = {1.0, 0.0}, result.facet_tangential_y_N = {0.0, 0.0};
   result.facet_tangential_z_N = {0.0, 0.0};
   result.facet_contact_area_m2 = {0.01, 0.0}, result.facet_pressure_Pa = {1200.0, 0.0};
@@ -127,6 +129,8 @@ TEST(SurfaceExchange, EachLoadComesBackToTheNodeItWasComputedFor) {
   ASSERT_EQ(loads.nodes.size(), n - 1);  // the unloaded node is left out
   ASSERT_EQ(loads.facets.size(), 1u);
   EXPECT_EQ(loads.facets[0], sent.facets[0]);
+  EXPECT_EQ(loads.pressure_x_N[0], -3.0);
+  EXPECT_EQ(loads.pressure_z_N[0], 11.0);
   EXPECT_NO_THROW(cosim::check_surface_loads(loads, surface, "loads"));
   for (std::size_t k = 0; k < loads.nodes.size(); ++k) {
     const int model_node = surface.node_ids[loads.nodes[k]];

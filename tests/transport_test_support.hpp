@@ -129,6 +129,9 @@ inline ContactLoads loads_sample(std::uint64_t run_id, std::uint64_t step, std::
   l.fz_N = doubles(n, 13, step);
   l.facets = ids(n + 3, 19);
   l.normal_force_N = doubles(n + 3, 14, step);
+  l.pressure_x_N = doubles(n + 3, 20, step);
+  l.pressure_y_N = doubles(n + 3, 21, step);
+  l.pressure_z_N = doubles(n + 3, 22, step);
   l.tangential_x_N = doubles(n + 3, 15, step);
   l.tangential_y_N = doubles(n + 3, 16, step);
   l.tangential_z_N = doubles(n + 3, 17, step);
@@ -182,6 +185,9 @@ inline void expect_same(const ContactLoads& a, const ContactLoads& b) {
   EXPECT_EQ(a.fz_N, b.fz_N);
   EXPECT_EQ(a.facets, b.facets);
   EXPECT_EQ(a.normal_force_N, b.normal_force_N);
+  EXPECT_EQ(a.pressure_x_N, b.pressure_x_N);
+  EXPECT_EQ(a.pressure_y_N, b.pressure_y_N);
+  EXPECT_EQ(a.pressure_z_N, b.pressure_z_N);
   EXPECT_EQ(a.tangential_x_N, b.tangential_x_N);
   EXPECT_EQ(a.tangential_y_N, b.tangential_y_N);
   EXPECT_EQ(a.tangential_z_N, b.tangential_z_N);

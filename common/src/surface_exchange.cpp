@@ -59,6 +59,9 @@ void check_surface_loads(const SurfaceLoads& l, const SurfaceTopology& topology,
   check_length(l.fy_N.size(), n, what, "fy_N", "nodes");
   check_length(l.fz_N.size(), n, what, "fz_N", "nodes");
   check_length(l.normal_force_N.size(), facets, what, "normal_force_N", "facets");
+  check_length(l.pressure_x_N.size(), facets, what, "pressure_x_N", "facets");
+  check_length(l.pressure_y_N.size(), facets, what, "pressure_y_N", "facets");
+  check_length(l.pressure_z_N.size(), facets, what, "pressure_z_N", "facets");
   check_length(l.tangential_x_N.size(), facets, what, "tangential_x_N", "facets");
   check_length(l.tangential_y_N.size(), facets, what, "tangential_y_N", "facets");
   check_length(l.tangential_z_N.size(), facets, what, "tangential_z_N", "facets");

@@ -97,6 +97,7 @@ class CouplerRun final : public cosim::Participant {
   tp::WheelState wheel_;
   tp::ContactLoads loads_;
   std::vector<Row> rows_;
+  double largest_residual_N_ = 0.0, largest_force_N_ = 0.0;  // of the decomposition, over the steps
   FacetLoads last_facets_;
   DecompositionOptions decomposition_;
   double rolling_radius_ = 0.36, window_s_ = 0.0;
@@ -218,8 +219,11 @@ bool CouplerRun::advance() {
   const FacetLoads facet_loads = facet_loads_from_contact(loads_, tags_, geometry);
   const ForceDecomposition d = decompose_forces(facet_loads, wheel_input(wheel_, rolling_radius_), decomposition_);
   summary_out_->write(force_summary(d, k_.header));
-  double fx = 0.0, fz = 0.0;
-  for (std::size_t j = 0; j < loads_.nodes.size(); ++j) fx += loads_.fx_N[j], fz += loads_.fz_N[j];
+  double fx = 0.0, fy = 0.0, fz = 0.0;
+  for (std::size_t j = 0; j < loads_.nodes.size(); ++j) fx += loads_.fx_N[j], fy += loads_.fy_N[j], fz += loads_.fz_N[j];
+  // Every step: the facets' pressure and friction parts add up to the force on the tyre.
+  largest_residual_N_ = std::max(largest_residual_N_, decomposition_residual_N(facet_loads, fx, fy, fz));
+  largest_force_N_ = std::max(largest_force_N_, std::sqrt(fx * fx + fy * fy + fz * fz));
   csv_->row({sim_time_, double(step_), d.traction_force_N, d.motion_resistance_N, d.groove_force_N,
              d.vertical_pressure_force_N, d.rolling_resistance_moment_Nm, d.rolling_resistance_force_N,
              d.drawbar_pull_N, d.net_longitudinal_pressure_force_N, d.traction_minus_rrf_N, d.sinkage_m,
@@ -270,6 +274,8 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
   results["vertical_pressure_force_N"] = avg(mean.vertical_pressure_force_N);
   results["sinkage_m"] = avg(mean.sinkage_m);
   results["contact_area_m2"] = avg(mean.contact_area_m2);
+  results["decomposition_residual_max_N"] = largest_residual_N_;
+  results["decomposition_residual_relative"] = largest_force_N_ > 0 ? largest_residual_N_ / largest_force_N_ : 0.0;
   if (!rows_.empty()) {
     results["final_contact_area_m2"] = rows_.back().d.contact_area_m2;
     results["final_sinkage_m"] = rows_.back().d.sinkage_m;

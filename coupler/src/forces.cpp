@@ -64,6 +64,13 @@ PressureSplit split_longitudinal_pressure(const FacetLoads& loads, const TagSet&
 
 double vertical_pressure_force(const FacetLoads& loads) { return sum(loads.pressure_z_N); }
 
+double decomposition_residual_N(const FacetLoads& loads, double total_x_N, double total_y_N, double total_z_N) {
+  const double dx = sum(loads.pressure_x_N) + sum(loads.friction_x_N) - total_x_N;
+  const double dy = sum(loads.pressure_y_N) + sum(loads.friction_y_N) - total_y_N;
+  const double dz = sum(loads.pressure_z_N) + sum(loads.friction_z_N) - total_z_N;
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 double rolling_resistance_moment(const FacetLoads& loads, double rim_x_m) {
   double m = 0.0;
   for (std::size_t i = 0; i < loads.size(); ++i) m += loads.pressure_z_N[i] * (loads.centroid_x_m[i] - rim_x_m);

@@ -10,8 +10,8 @@ namespace coupler {
 FacetLoads facet_loads_from_contact(const cosim::transport::ContactLoads& c, const std::vector<FacetTag>& tags,
                                     const FacetGeometry& g) {
   const std::size_t n = c.facets.size();
-  for (const auto* f : {&c.normal_force_N, &c.tangential_x_N, &c.tangential_y_N, &c.tangential_z_N,
-                        &c.contact_area_m2})
+  for (const auto* f : {&c.normal_force_N, &c.pressure_x_N, &c.pressure_y_N, &c.pressure_z_N, &c.tangential_x_N,
+                        &c.tangential_y_N, &c.tangential_z_N, &c.contact_area_m2})
     if (f->size() != n)
       throw cosim::Error("ContactLoads: per-facet arrays differ in length from facets (" + std::to_string(n) + ")");
   if (g.area_m2.size() != tags.size())
@@ -27,9 +27,11 @@ FacetLoads facet_loads_from_contact(const cosim::transport::ContactLoads& c, con
     if (f >= tags.size())
       throw cosim::Error("ContactLoads: facet index " + std::to_string(f) + " (entry " + std::to_string(k) +
                          ") is out of range: the surface has " + std::to_string(tags.size()) + " facets");
-    const Vec3 p = pressure_force(c.normal_force_N[k], g.normal_x[f], g.normal_y[f], g.normal_z[f]);
+    // The pressure part as the terrain summed it, contact by contact: at a block's
+    // edge a particle pushes along the line from the edge to itself, which the
+    // facet normal times the normal force would turn into the facet's direction.
     l.tag[k] = tags[f];
-    l.pressure_x_N[k] = p.x, l.pressure_y_N[k] = p.y, l.pressure_z_N[k] = p.z;
+    l.pressure_x_N[k] = c.pressure_x_N[k], l.pressure_y_N[k] = c.pressure_y_N[k], l.pressure_z_N[k] = c.pressure_z_N[k];
     l.friction_x_N[k] = c.tangential_x_N[k], l.friction_y_N[k] = c.tangential_y_N[k];
     l.friction_z_N[k] = c.tangential_z_N[k];
     l.centroid_x_m[k] = g.centroid_x_m[f], l.centroid_y_m[k] = g.centroid_y_m[f];

@@ -21,6 +21,7 @@ void copy_loads(const From& a, To& b) {
   b.fx_N = a.fx_N, b.fy_N = a.fy_N, b.fz_N = a.fz_N;
   b.facets = a.facets;
   b.normal_force_N = a.normal_force_N;
+  b.pressure_x_N = a.pressure_x_N, b.pressure_y_N = a.pressure_y_N, b.pressure_z_N = a.pressure_z_N;
   b.tangential_x_N = a.tangential_x_N, b.tangential_y_N = a.tangential_y_N, b.tangential_z_N = a.tangential_z_N;
   b.contact_area_m2 = a.contact_area_m2;
   b.pressure_Pa = a.pressure_Pa;

@@ -211,11 +211,15 @@ void sparse_surface_loads(const cosim::SurfaceState& state, const SurfaceContact
     out.fx_N.push_back(l.node_fx[j]), out.fy_N.push_back(l.node_fy[j]), out.fz_N.push_back(l.node_fz[j]);
   }
   out.facets.clear(), out.normal_force_N.clear(), out.tangential_x_N.clear(), out.tangential_y_N.clear();
+  out.pressure_x_N.clear(), out.pressure_y_N.clear(), out.pressure_z_N.clear();
   out.tangential_z_N.clear(), out.contact_area_m2.clear(), out.pressure_Pa.clear();
   for (std::size_t f = 0; f < state.facets.size(); ++f) {
     if (l.particles_in_contact[f] == 0) continue;
     out.facets.push_back(state.facets[f]);
     out.normal_force_N.push_back(l.facet_normal_force_N[f]);
+    out.pressure_x_N.push_back(l.facet_pressure_x_N[f]);
+    out.pressure_y_N.push_back(l.facet_pressure_y_N[f]);
+    out.pressure_z_N.push_back(l.facet_pressure_z_N[f]);
     out.tangential_x_N.push_back(l.facet_tangential_x_N[f]);
     out.tangential_y_N.push_back(l.facet_tangential_y_N[f]);
     out.tangential_z_N.push_back(l.facet_tangential_z_N[f]);
@@ -257,7 +261,8 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     if (n >= nn) throw cosim::Error("contact surface: facet node " + std::to_string(n) + " out of range");
   loads = SurfaceContactResult{};
   loads.node_fx.assign(nn, 0.0), loads.node_fy.assign(nn, 0.0), loads.node_fz.assign(nn, 0.0);
-  for (auto* v : {&loads.facet_normal_force_N, &loads.facet_tangential_x_N, &loads.facet_tangential_y_N,
+  for (auto* v : {&loads.facet_normal_force_N, &loads.facet_pressure_x_N, &loads.facet_pressure_y_N,
+                  &loads.facet_pressure_z_N, &loads.facet_tangential_x_N, &loads.facet_tangential_y_N,
                   &loads.facet_tangential_z_N, &loads.facet_contact_area_m2, &loads.facet_pressure_Pa})
     v->assign(nf, 0.0);
   loads.particles_in_contact.assign(nf, 0);
@@ -486,6 +491,9 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
         loads.node_fz[q[a]] -= ct.w[a] * ct.f[2];
       }
       loads.facet_normal_force_N[ct.facet] += ct.fn;
+      loads.facet_pressure_x_N[ct.facet] -= ct.fn * ct.normal[0];
+      loads.facet_pressure_y_N[ct.facet] -= ct.fn * ct.normal[1];
+      loads.facet_pressure_z_N[ct.facet] -= ct.fn * ct.normal[2];
       loads.facet_tangential_x_N[ct.facet] -= ct.ft[0];
       loads.facet_tangential_y_N[ct.facet] -= ct.ft[1];
       loads.facet_tangential_z_N[ct.facet] -= ct.ft[2];

@@ -121,6 +121,9 @@ void view(const ContactLoads& s, cosim_wire_ContactLoads& w, Scratch&) {
   view_seq(s.fz_N, w.fz_N);
   view_seq(s.facets, w.facets);
   view_seq(s.normal_force_N, w.normal_force_N);
+  view_seq(s.pressure_x_N, w.pressure_x_N);
+  view_seq(s.pressure_y_N, w.pressure_y_N);
+  view_seq(s.pressure_z_N, w.pressure_z_N);
   view_seq(s.tangential_x_N, w.tangential_x_N);
   view_seq(s.tangential_y_N, w.tangential_y_N);
   view_seq(s.tangential_z_N, w.tangential_z_N);
@@ -135,6 +138,9 @@ void from_wire(const cosim_wire_ContactLoads& w, ContactLoads& s) {
   from_seq(w.fz_N, s.fz_N);
   from_seq(w.facets, s.facets);
   from_seq(w.normal_force_N, s.normal_force_N);
+  from_seq(w.pressure_x_N, s.pressure_x_N);
+  from_seq(w.pressure_y_N, s.pressure_y_N);
+  from_seq(w.pressure_z_N, s.pressure_z_N);
   from_seq(w.tangential_x_N, s.tangential_x_N);
   from_seq(w.tangential_y_N, s.tangential_y_N);
   from_seq(w.tangential_z_N, s.tangential_z_N);

@@ -95,6 +95,9 @@ void to_wire(const ContactLoads& s, cosim_wire::ContactLoads& w) {
   w.fz_N() = s.fz_N;
   w.facets() = s.facets;
   w.normal_force_N() = s.normal_force_N;
+  w.pressure_x_N() = s.pressure_x_N;
+  w.pressure_y_N() = s.pressure_y_N;
+  w.pressure_z_N() = s.pressure_z_N;
   w.tangential_x_N() = s.tangential_x_N;
   w.tangential_y_N() = s.tangential_y_N;
   w.tangential_z_N() = s.tangential_z_N;
@@ -109,6 +112,9 @@ void from_wire(cosim_wire::ContactLoads& w, ContactLoads& s) {
   s.fz_N = std::move(w.fz_N());
   s.facets = std::move(w.facets());
   s.normal_force_N = std::move(w.normal_force_N());
+  s.pressure_x_N = std::move(w.pressure_x_N());
+  s.pressure_y_N = std::move(w.pressure_y_N());
+  s.pressure_z_N = std::move(w.pressure_z_N());
   s.tangential_x_N = std::move(w.tangential_x_N());
   s.tangential_y_N = std::move(w.tangential_y_N());
   s.tangential_z_N = std::move(w.tangential_z_N());

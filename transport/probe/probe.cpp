@@ -103,6 +103,9 @@ ContactLoads make_loads(std::uint64_t run_id, std::uint64_t step, int nodes) {
   fill(l.fz_N, n, 13, step);
   indices(l.facets, n, 4, step);
   fill(l.normal_force_N, n, 14, step);
+  fill(l.pressure_x_N, n, 20, step);
+  fill(l.pressure_y_N, n, 21, step);
+  fill(l.pressure_z_N, n, 22, step);
   fill(l.tangential_x_N, n, 15, step);
   fill(l.tangential_y_N, n, 16, step);
   fill(l.tangential_z_N, n, 17, step);
@@ -145,6 +148,9 @@ void check_loads(const ContactLoads& got, std::uint64_t run_id, std::uint64_t st
   expect(got.fz_N, w.fz_N, "ContactLoads", "fz_N");
   expect(got.facets, w.facets, "ContactLoads", "facets");
   expect(got.normal_force_N, w.normal_force_N, "ContactLoads", "normal_force_N");
+  expect(got.pressure_x_N, w.pressure_x_N, "ContactLoads", "pressure_x_N");
+  expect(got.pressure_y_N, w.pressure_y_N, "ContactLoads", "pressure_y_N");
+  expect(got.pressure_z_N, w.pressure_z_N, "ContactLoads", "pressure_z_N");
   expect(got.tangential_x_N, w.tangential_x_N, "ContactLoads", "tangential_x_N");
   expect(got.tangential_y_N, w.tangential_y_N, "ContactLoads", "tangential_y_N");
   expect(got.tangential_z_N, w.tangential_z_N, "ContactLoads", "tangential_z_N");
@@ -186,7 +192,7 @@ ProbeResult run_ping(const ProbeOptions& o) {
     }
   }
   r.loads_bytes = payload_bytes(loads.nodes) + 3 * payload_bytes(loads.fx_N) + payload_bytes(loads.facets) +
-                  6 * payload_bytes(loads.normal_force_N);
+                  9 * payload_bytes(loads.normal_force_N);
   RunControl stop;
   stop.header = {o.run_id, static_cast<std::uint64_t>(total), 0.0};
   stop.kind = ControlKind::stop;

@@ -46,7 +46,10 @@ struct SurfaceLoads {
   std::vector<std::uint32_t> nodes;
   std::vector<double> fx_N, fy_N, fz_N;        // force on the surface node, global frame
   std::vector<std::uint32_t> facets;
-  std::vector<double> normal_force_N;          // compressive > 0
+  std::vector<double> normal_force_N;          // along the facet normal, compressive > 0
+  // The pressure (non-friction) part of the force on the facet, global frame:
+  // along each contact's own direction (at an edge, from the closest point to the particle).
+  std::vector<double> pressure_x_N, pressure_y_N, pressure_z_N;
   std::vector<double> tangential_x_N, tangential_y_N, tangential_z_N;
   std::vector<double> contact_area_m2;
   std::vector<double> pressure_Pa;

@@ -22,14 +22,4 @@ struct FacetGeometry {
 FacetGeometry quad_facet_geometry(const std::vector<double>& x_m, const std::vector<double>& y_m,
                                   const std::vector<double>& z_m, const std::vector<std::uint32_t>& facet_nodes);
 
-// Pressure (normal) force on the tyre facet: P = -N n, with N the compressive
-// normal force (> 0 pushes into the tyre) and n the unit outward normal
-// (the CFN part of the contact force; thesis eq. 2.2 "due to contact pressure").
-struct Vec3 {
-  double x = 0.0, y = 0.0, z = 0.0;
-};
-inline Vec3 pressure_force(double normal_force_N, double nx, double ny, double nz) {
-  return {-normal_force_N * nx, -normal_force_N * ny, -normal_force_N * nz};
-}
-
 }  // namespace coupler

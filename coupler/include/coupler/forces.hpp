@@ -19,7 +19,9 @@ namespace coupler {
 // Contact forces on the tyre, one entry per contacted facet (structure of arrays).
 struct FacetLoads {
   std::vector<FacetTag> tag;
-  std::vector<double> pressure_x_N, pressure_y_N, pressure_z_N;  // normal (pressure) part, -N n
+  // The pressure part (the CFN part of thesis eq. 2.2, "due to contact pressure"):
+  // as the terrain summed it, along each contact's direction (ContactLoads.pressure_*).
+  std::vector<double> pressure_x_N, pressure_y_N, pressure_z_N;
   std::vector<double> friction_x_N, friction_y_N, friction_z_N;  // tangential (friction) part
   std::vector<double> centroid_x_m, centroid_y_m, centroid_z_m;
   std::vector<double> contact_area_m2;                           // > 0: facet in contact
@@ -87,6 +89,10 @@ struct PressureSplit {
 PressureSplit split_longitudinal_pressure(const FacetLoads& loads, const TagSet& groove_tags);
 // F4 = sum_i P_z,i: vertical force due to contact pressure, Figure 2.1.
 double vertical_pressure_force(const FacetLoads& loads);
+// The parts add up (thesis eq. 2.2: each contact force is its pressure part plus
+// its friction part): |sum over the facets of (pressure + friction) - total| [N],
+// total the force the terrain puts on the tyre's nodes.
+double decomposition_residual_N(const FacetLoads& loads, double total_x_N, double total_y_N, double total_z_N);
 // RRM = sum_i P_z,i (x_i - x_rim) = F4 delta x, thesis 2.1.4 / Figure 2.2; > 0 opposes forward rolling.
 double rolling_resistance_moment(const FacetLoads& loads, double rim_x_m);
 // F5 = RRM / r, thesis 2.1.4 with r of eq. 5.1; throws unless r > 0.

@@ -67,6 +67,11 @@ struct SurfaceContactResult {
   // along -n) [N]; tangential (friction) force on the surface [N]; the facet's
   // area if it carries contact, else 0 [m^2]; pressure = normal force / area [Pa].
   std::vector<double> facet_normal_force_N, facet_tangential_x_N, facet_tangential_y_N, facet_tangential_z_N;
+  // Per facet: the pressure (non-friction) force on the surface, -fn along each
+  // contact's own direction (the facet normal, or at an edge or corner the line
+  // from the closest point to the particle) [N]; pressure + tangential summed
+  // over the facets is the total force on the surface.
+  std::vector<double> facet_pressure_x_N, facet_pressure_y_N, facet_pressure_z_N;
   std::vector<double> facet_contact_area_m2, facet_pressure_Pa;
   std::vector<std::uint32_t> particles_in_contact;  // per facet
   double total_fx_N = 0, total_fy_N = 0, total_fz_N = 0;  // force on the surface

@@ -61,6 +61,7 @@ struct ContactLoads {
   std::vector<double> fx_N, fy_N, fz_N;
   std::vector<std::uint32_t> facets;
   std::vector<double> normal_force_N;
+  std::vector<double> pressure_x_N, pressure_y_N, pressure_z_N;
   std::vector<double> tangential_x_N, tangential_y_N, tangential_z_N;
   std::vector<double> contact_area_m2;
   std::vector<double> pressure_Pa;
