@@ -34,11 +34,13 @@ int main(int argc, char** argv) {
   check_cmd->add_option("scene", check_file, "scene file")->required();
   check_cmd->add_option("--set", check_sets, "override a scene field");
   std::string study_file, study_out;
-  bool study_no_vtk = false;
+  bool study_no_vtk = false, study_resume = false;
   auto* study_cmd = app.add_subcommand("study", "run a study (several cases) and tabulate");
   study_cmd->add_option("study", study_file, "study file")->required();
   study_cmd->add_option("--out", study_out, "output folder")->required();
   study_cmd->add_flag("--no-vtk", study_no_vtk, "do not write VTK files");
+  study_cmd->add_flag("--resume", study_resume,
+                      "keep the cases already completed in --out with the same overrides, run the others");
   cosim::MonitorOptions monitor;
   std::string monitor_vendor = "cyclone", monitor_run_id;
   std::vector<std::string> monitor_peers;
@@ -81,7 +83,7 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(r.samples));
       return 0;
     }
-    return cosim::run_study(study_file, study_out, study_no_vtk);
+    return cosim::run_study(study_file, study_out, study_no_vtk, study_resume);
   } catch (const cosim::Error& e) {
     std::fprintf(stderr, "cosim: error: %s\n", e.what());
     return 2;

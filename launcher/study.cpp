@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -83,38 +85,26 @@ void plot(const std::string& dir, const std::string& field, const std::string& t
     throw Error("gnuplot failed on " + dir + "/error_vs_runtime.png (is gnuplot installed? scripts/setup.sh installs it)");
 }
 
-}  // namespace
+// The case's earlier run, if it completed with the same overrides (cosim study --resume).
+nlohmann::json completed_before(const std::string& case_dir, const LoadedScene& scene) {
+  const std::string file = case_dir + "/summary.json";
+  if (!std::ifstream(file)) return nullptr;
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(read_file(file));
+  } catch (const std::exception&) {
+    return nullptr;  // cut short while written: run it again
+  }
+  nlohmann::json overrides = nlohmann::json::object();
+  for (const auto& [k, v] : scene.overrides) overrides[k] = v;
+  if (summary.value("status", "") != "completed" || summary.value("overrides", nlohmann::json()) != overrides)
+    return nullptr;
+  return summary;
+}
 
-int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk) {
-  const auto study = load_study(study_file);
-  const auto& s = study->message;
-  const auto loc = study->locator();
-  ValidationReport report;
-  if (s.scene().empty()) report.fail(loc.where("scene"), "a study needs a scene");
-  if (s.cases_size() == 0) report.fail(loc.where("cases"), "a study needs cases");
-  if (s.result_field().empty()) report.fail(loc.where("result_field"), "name the summary result to compare");
-  report.throw_if_failed();
-  const std::string scene_file = folder_of(study_file) + "/" + s.scene();
-  make_folder(out_dir);
-  // Validate every case before running any.
-  for (int c = 0; c < s.cases_size(); ++c) {
-    std::vector<std::string> sets(s.cases(c).set().begin(), s.cases(c).set().end());
-    check_scene(*load_scene(scene_file, sets));
-  }
-  // Run every case, then tabulate (the last case is the reference when comparing with the finest).
-  std::vector<nlohmann::json> summaries;
-  for (int c = 0; c < s.cases_size(); ++c) {
-    const auto& k = s.cases(c);
-    RunRequest request{scene_file, out_dir + "/" + k.label(),
-                       std::vector<std::string>(k.set().begin(), k.set().end()), false, no_vtk};
-    std::fprintf(stderr, "cosim study: case %d/%d '%s'\n", c + 1, s.cases_size(), k.label().c_str());
-    const int code = run_scene_processes(request);
-    if (code != 0) throw Error("study case '" + k.label() + "' failed (exit code " + std::to_string(code) + ")");
-    summaries.push_back(nlohmann::json::parse(read_file(request.out_dir + "/summary.json")));
-    if (!summaries.back()["results"][s.result_field()].is_number())
-      throw Error(loc.where("result_field") + ": summary of case '" + k.label() + "' has no result '" +
-                  s.result_field() + "'");
-  }
+// table.csv, summary.json and the plot of the cases in `summaries` (the first ones of the study).
+void tabulate(const scene::Study& s, const std::string& out_dir, const std::string& scene_file,
+              const std::vector<nlohmann::json>& summaries) {
   const double reference = s.compare_with_last_case()
                                ? summaries.back()["results"][s.result_field()].get<double>()
                                : s.reference_value();
@@ -124,9 +114,9 @@ int run_study(const std::string& study_file, const std::string& out_dir, bool no
   for (const auto& f : s.extra_result_fields()) table << "," << f;
   table << "\n";
   nlohmann::json rows = nlohmann::json::array();
-  for (int c = 0; c < s.cases_size(); ++c) {
+  for (std::size_t c = 0; c < summaries.size(); ++c) {
     const auto& summary = summaries[c];
-    const auto& label = s.cases(c).label();
+    const auto& label = s.cases(static_cast<int>(c)).label();
     const auto& result = summary["results"][s.result_field()];
     const double value = result.get<double>();
     const double error = reference != 0 ? (value - reference) / reference : 0.0;
@@ -150,8 +140,62 @@ int run_study(const std::string& study_file, const std::string& out_dir, bool no
   table.close();
   write_json(out_dir + "/summary.json", {{"study", s.name()}, {"scene", scene_file},
                                          {"reference_value", reference}, {"compared_with_last_case", s.compare_with_last_case()},
-                                         {"reference_source", s.reference_source()}, {"cases", rows}});
+                                         {"reference_source", s.reference_source()}, {"cases", rows},
+                                         {"cases_completed", summaries.size()}, {"cases_planned", s.cases_size()}});
   plot(out_dir, s.result_field(), s.name() + ": error against run time");
+}
+
+}  // namespace
+
+int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk, bool resume) {
+  const auto study = load_study(study_file);
+  const auto& s = study->message;
+  const auto loc = study->locator();
+  ValidationReport report;
+  if (s.scene().empty()) report.fail(loc.where("scene"), "a study needs a scene");
+  if (s.cases_size() == 0) report.fail(loc.where("cases"), "a study needs cases");
+  if (s.result_field().empty()) report.fail(loc.where("result_field"), "name the summary result to compare");
+  report.throw_if_failed();
+  const std::string scene_file = folder_of(study_file) + "/" + s.scene();
+  make_folder(out_dir);
+  // Validate every case before running any.
+  std::vector<std::unique_ptr<LoadedScene>> scenes;
+  for (int c = 0; c < s.cases_size(); ++c) {
+    scenes.push_back(load_scene(scene_file, std::vector<std::string>(s.cases(c).set().begin(), s.cases(c).set().end())));
+    check_scene(*scenes.back());
+  }
+  // Run every case, then tabulate (the last case is the reference when comparing with the finest).
+  std::vector<nlohmann::json> summaries;
+  try {
+    for (int c = 0; c < s.cases_size(); ++c) {
+      const auto& k = s.cases(c);
+      RunRequest request{scene_file, out_dir + "/" + k.label(),
+                         std::vector<std::string>(k.set().begin(), k.set().end()), false, no_vtk};
+      nlohmann::json earlier = resume ? completed_before(request.out_dir, *scenes[c]) : nullptr;
+      if (!earlier.is_null()) {
+        std::fprintf(stderr, "cosim study: case %d/%d '%s' completed before (%s/summary.json): kept\n", c + 1,
+                     s.cases_size(), k.label().c_str(), request.out_dir.c_str());
+        summaries.push_back(std::move(earlier));
+      } else {
+        std::fprintf(stderr, "cosim study: case %d/%d '%s'\n", c + 1, s.cases_size(), k.label().c_str());
+        const int code = run_scene_processes(request);
+        if (code != 0) throw Error("study case '" + k.label() + "' failed (exit code " + std::to_string(code) + ")");
+        summaries.push_back(nlohmann::json::parse(read_file(request.out_dir + "/summary.json")));
+      }
+      if (!summaries.back()["results"][s.result_field()].is_number())
+        throw Error(loc.where("result_field") + ": summary of case '" + k.label() + "' has no result '" +
+                    s.result_field() + "'");
+    }
+  } catch (const Error& e) {
+    // Nothing completed is lost: the finished cases are tabulated, and --resume runs the rest.
+    if (!summaries.empty() && summaries.back()["results"][s.result_field()].is_number()) {
+      tabulate(s, out_dir, scene_file, summaries);
+      std::fprintf(stderr, "cosim study: wrote the %zu completed case(s) to %s/table.csv; `--resume` runs the rest\n",
+                   summaries.size(), out_dir.c_str());
+    }
+    throw;
+  }
+  tabulate(s, out_dir, scene_file, summaries);
   std::fprintf(stderr, "cosim study: wrote %s/table.csv and %s/error_vs_runtime.png\n", out_dir.c_str(), out_dir.c_str());
   return 0;
 }

@@ -31,7 +31,10 @@ struct RunRequest {
 int run_scene_processes(const RunRequest& request);
 
 // Runs every case of a study and writes DIR/table.csv, DIR/summary.json and
-// DIR/error_vs_runtime.png (gnuplot).
-int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk);
+// DIR/error_vs_runtime.png (gnuplot). If a case fails or the study is stopped,
+// the cases completed so far are tabulated before the error is reported.
+// resume: a case whose DIR/LABEL/summary.json says it completed with the same
+// overrides is taken as it is instead of being run again.
+int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk, bool resume = false);
 
 }  // namespace cosim

@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -69,6 +73,36 @@ TEST(Launcher, StudyWritesTableAndPlot) {
   EXPECT_EQ(row1.rfind("coarse,0.0057,", 0), 0u) << row1;
   EXPECT_EQ(row2.rfind("fine,0.0028575,", 0), 0u) << row2;
   EXPECT_GT(std::filesystem::file_size(dir + "/error_vs_runtime.png"), 1000u);
+}
+
+// --resume keeps a case that completed with the same overrides (its row, wall time
+// included, is the earlier run's) and runs the one whose summary is missing.
+TEST(Launcher, StudyResumeKeepsCompletedCasesAndRunsTheRest) {
+  const auto dir = test_support::scratch("launcher_study_resume");
+  const std::string study = bin() + "/cosim study " + test_support::source_dir() + "/tests/test_launcher.textproto --out " +
+                            dir + " --no-vtk";
+  auto [code, out] = shell(study);
+  ASSERT_EQ(code, 0) << out;
+  auto rows = [&] {
+    std::ifstream table(dir + "/table.csv");
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(table, line);) lines.push_back(line);
+    return lines;
+  };
+  const auto first = rows();
+  ASSERT_EQ(first.size(), 3u);
+  std::filesystem::remove(dir + "/fine/summary.json");
+  std::tie(code, out) = shell(study + " --resume");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("case 1/2 'coarse' completed before"), std::string::npos) << out;
+  EXPECT_EQ(out.find("case 2/2 'fine' completed before"), std::string::npos) << out;
+  const auto second = rows();
+  ASSERT_EQ(second.size(), 3u);
+  EXPECT_EQ(second[1], first[1]);                 // kept as it was
+  EXPECT_EQ(second[2].rfind("fine,", 0), 0u);     // run again
+  // Resumed again, both are kept.
+  std::tie(code, out) = shell(study + " --resume");
+  EXPECT_NE(out.find("case 2/2 'fine' completed before"), std::string::npos) << out;
 }
 
 TEST(Launcher, InterruptedRunKeepsItsOutputs) {
