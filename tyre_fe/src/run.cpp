@@ -119,6 +119,7 @@ class TyreRun final : public cosim::Participant {
   // Loading.
   double radius0_ = 0.0, load_ = 0.0, load_ramp_ = 0.0, loading_start_ = 0.0, previous_kinetic_ = 0.0;
   bool at_rest_ = false;
+  double slow_since_ = 0.0;  // the rim's speed below the rest speed since this time
   // Rolling: the averaging window's sums.
   double spin_up_radius_ = 0.0, t_window_ = 0.0, average_window_ = 0.0;
   double x_w_ = 0, a_w_ = 0, fx_sum_ = 0, m_sum_ = 0, fz_sum_ = 0, h_sum_ = 0, w_sum_ = 0;
@@ -382,9 +383,14 @@ bool TyreRun::each_step() {
         }
       }
       const double tol = st.loading_rest_tolerance();
-      if (tol <= 0.0 || s_.time_s - loading_start_ < load_ramp_) return false;
-      at_rest_ = std::fabs(ground_fz() - load_) < tol * load_ && std::fabs(s_.rim.tyre_force_z_N - load_) < tol * load_ &&
-                 s_.energy.kinetic_J < tol * s_.energy.internal_J;
+      if (tol <= 0.0) return false;
+      const bool balanced = s_.time_s - loading_start_ >= load_ramp_ && std::fabs(ground_fz() - load_) < tol * load_ &&
+                            std::fabs(s_.rim.tyre_force_z_N - load_) < tol * load_ &&
+                            s_.energy.kinetic_J < tol * s_.energy.internal_J;
+      // The rim's speed must stay below the rest speed for the hold time (as a body's rest in snow_sph).
+      const double rest_speed = st.loading_rest_speed_m_per_s();
+      if (!(balanced && (rest_speed <= 0.0 || std::fabs(s_.rim.vz) < rest_speed))) slow_since_ = s_.time_s;
+      at_rest_ = balanced && (rest_speed <= 0.0 || s_.time_s - slow_since_ >= st.loading_rest_hold_s());
       return at_rest_;
     }
     case kRolling:
@@ -418,6 +424,7 @@ void TyreRun::end_stage() {
       if (st.loading_s() <= 0) break;
       results["loading_time_s"] = s_.time_s - loading_start_;
       results["loading_came_to_rest"] = at_rest_;
+      results["rim_vertical_speed_m_per_s"] = s_.rim.vz;  // how far from rest the loading ended
       const double loaded_radius = s_.rim.z - s_.road.height_m;
       results["unloaded_radius_m"] = radius0_;
       results["loaded_radius_m"] = loaded_radius;
