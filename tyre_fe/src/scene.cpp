@@ -160,7 +160,8 @@ void validate_tyre_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepo
   if (!(t.rim().spin_inertia_kg_m2() > 0)) r.fail(rl.where("spin_inertia_kg_m2"), "must be > 0");
   if (t.rim().wheel_load_n() < 0) r.fail(rl.where("wheel_load_N"), "must be >= 0 (it presses downwards)");
   const auto st = loc.child("stages");
-  for (const char* f : {"transfer_check_s", "loading_s", "rolling_s", "average_last_s", "loading_damping_per_s"}) {
+  for (const char* f : {"transfer_check_s", "loading_s", "rolling_s", "average_last_s", "loading_damping_per_s",
+                        "loading_rest_tolerance", "loading_rest_speed_m_per_s", "loading_rest_hold_s"}) {
     const auto* field = sc::TyreStages::descriptor()->FindFieldByName(f);
     if (t.stages().GetReflection()->GetDouble(t.stages(), field) < 0) r.fail(st.where(f), "must be >= 0");
   }
