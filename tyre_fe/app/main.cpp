@@ -63,7 +63,9 @@ int main(int argc, char** argv) {
       }
 
     }
-    const auto summary = tyre_fe::run_tyre_scene(*scene, {out_dir, quiet, !no_vtk, mesh_only});
+    const tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
+    const auto summary = scene->message.has_tread_block() ? tyre_fe::run_tread_block_scene(*scene, options)
+                                                          : tyre_fe::run_tyre_scene(*scene, options);
     cosim::print_results(summary);
     return 0;
   } catch (const cosim::Error& e) {

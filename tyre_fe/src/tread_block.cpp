@@ -111,6 +111,9 @@ void validate_tread_block_scene(const cosim::LoadedScene& loaded, cosim::Validat
   const auto& b = scene.tread_block();
   const auto loc = loaded.locator().child("tread_block");
   if (scene.has_tyre()) r.fail(loc.where("length_x_m"), "a scene has a `tyre` or a `tread_block`, not both");
+  if (!scene.has_sph() || scene.coupling().terrain().empty() || scene.coupling().terrain() == "rigid_road")
+    r.fail(loaded.locator().child("coupling").where("terrain"),
+           "a tread block is pushed into an SPH terrain: give an `sph` section and coupling.terrain (a material file)");
   for (const char* f : {"length_x_m", "width_y_m", "base_thickness_m", "element_size_m", "push_speed_m_per_s"}) {
     const double v = b.GetReflection()->GetDouble(b, b.GetDescriptor()->FindFieldByName(f));
     if (!(v > 0) || !std::isfinite(v)) r.fail(loc.where(f), "must be > 0, got " + cosim::number_text(v));

@@ -30,9 +30,12 @@ class TreadBlockRun final : public cosim::Participant {
   std::uint64_t steps() const override { return s_.step; }
   void output(cosim::RunRecord& record) override;
   void finalize(cosim::RunRecord& record) override;
-  void finish_peers() override { port_->finish(false, ""); }
+  void finish_peers() override {
+    if (port_) port_->finish(false, "");
+  }
   void abort(const std::string& reason) noexcept override {
     failed_ = true;
+    if (!port_) return;
     try {
       port_->finish(true, reason);
     } catch (const std::exception&) {
@@ -54,7 +57,6 @@ class TreadBlockRun final : public cosim::Participant {
   const cosim::LoadedScene& loaded_;
   RunOptions options_;
   TerrainPort* port_;
-  cosim::RunRecord* record_ = nullptr;
   TreadBlockSetup setup_;
   std::unique_ptr<Model3d> model_;
   State3d s_;
@@ -66,7 +68,6 @@ class TreadBlockRun final : public cosim::Participant {
 };
 
 double TreadBlockRun::initialize(cosim::RunRecord& record) {
-  record_ = &record;
   if (!port_) throw cosim::Error("a tread block runs on a terrain solver only: start it with `cosim run`");
   setup_ = tread_block_setup(loaded_);
   const auto& scene = loaded_.message;
