@@ -104,7 +104,7 @@ double TreadBlockRun::initialize(cosim::RunRecord& record) {
   summary["coupled_dt_s"] = s_.dt_s;
   summary["coupling_window_s"] = window;
   summary["tyre_substeps"] = s_.terrain.substeps;
-  end_s_ = setup_.path.end_s() + setup_.hold_s;
+  end_s_ = cosim::planned_end_time_s(scene);  // the push and the hold; the coupler plans the same
   return end_s_;
 }
 
