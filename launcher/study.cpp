@@ -14,8 +14,7 @@
 #include "coupled_run.hpp"
 #include "coupler/scene_checks.hpp"
 #include "snow_sph/scene.hpp"
-#include "tyre_fe/scene.hpp"
-#include "tyre_fe/tread_block.hpp"
+#include "tyre_fe/run.hpp"
 
 namespace cosim {
 
@@ -35,8 +34,7 @@ void check_scene(const LoadedScene& scene) {
   ValidationReport report;
   // A tyre on the rigid road ignores the scene's terrain blocks.
   if (scene.message.coupling().terrain() != "rigid_road") snow_sph::validate_sph_scene(scene, report);
-  tyre_fe::validate_tyre_scene(scene, report);
-  tyre_fe::validate_tread_block_scene(scene, report);
+  tyre_fe::validate_fe_body_scene(scene, report);
   coupler::validate_coupling_scene(scene, report);
   report.throw_if_failed();
 }

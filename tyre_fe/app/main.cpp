@@ -14,7 +14,6 @@
 #include "cosim/interrupt.hpp"
 #include "tyre_fe/run.hpp"
 #include "tyre_fe/scene.hpp"
-#include "tyre_fe/tread_block.hpp"
 #include "dds_terrain_port.hpp"
 
 int main(int argc, char** argv) {
@@ -36,8 +35,7 @@ int main(int argc, char** argv) {
   try {
     const auto scene = cosim::load_scene(scene_file, sets);
     cosim::ValidationReport report;
-    tyre_fe::validate_tyre_scene(*scene, report);
-    tyre_fe::validate_tread_block_scene(*scene, report);
+    tyre_fe::validate_fe_body_scene(*scene, report);
     if (!cosim::has_fe_body(scene->message)) report.fail(scene_file, "the scene has no `tyre` or `tread_block` section");
     report.throw_if_failed();
     if (check) {
@@ -54,8 +52,7 @@ int main(int argc, char** argv) {
       tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
       options.terrain = &port;
       try {
-        const auto summary = scene->message.has_tread_block() ? tyre_fe::run_tread_block_scene(*scene, options)
-                                                              : tyre_fe::run_tyre_scene(*scene, options);
+        const auto summary = tyre_fe::run_fe_body_scene(*scene, options);
         cosim::print_results(summary);
         return 0;
       } catch (const std::exception& e) {
@@ -64,8 +61,7 @@ int main(int argc, char** argv) {
 
     }
     const tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
-    const auto summary = scene->message.has_tread_block() ? tyre_fe::run_tread_block_scene(*scene, options)
-                                                          : tyre_fe::run_tyre_scene(*scene, options);
+    const auto summary = tyre_fe::run_fe_body_scene(*scene, options);
     cosim::print_results(summary);
     return 0;
   } catch (const cosim::Error& e) {

@@ -14,6 +14,7 @@
 #include "tyre_fe/outputs.hpp"
 #include "tyre_fe/scene.hpp"
 #include "tyre_fe/solver3d.hpp"
+#include "tyre_fe/tread_block.hpp"
 
 namespace tyre_fe {
 namespace sc = cosim::scene;
@@ -68,12 +69,7 @@ class TyreRun final : public cosim::Participant {
   }
   void abort(const std::string& reason) noexcept override {
     failed_ = true;
-    if (!port_) return;
-    try {
-      port_->finish(true, reason);
-    } catch (const std::exception&) {
-      // The peers learn of the failure by their time-out instead.
-    }
+    report_failure(port_, reason);
   }
   void plots(cosim::RunRecord& record) override {
     if (stepping_) write_plots(record.out_dir());
@@ -221,7 +217,7 @@ double TyreRun::initialize(cosim::RunRecord& record) {
   frames_ = std::make_unique<FrameWriter>(out, options_.write_vtk ? scene_.output().vtk_interval_s() : 0.0);
   stepping_ = true;
   const auto& st = t_.stages();
-  return st.transfer_check_s() + st.loading_s() + st.rolling_s();
+  return cosim::planned_end_time_s(scene_);  // transfer check, loading, rolling
 }
 
 // The exchange, at a coupling window's start (docs/coupling.md): the surface
@@ -512,6 +508,15 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions
   cosim::RunRecord record(loaded, options.out_dir, "tyre_fe");
   TyreRun run(loaded, options);
   return cosim::run_participant(run, record, loaded.message.name(), options.quiet);
+}
+
+void validate_fe_body_scene(const cosim::LoadedScene& loaded, cosim::ValidationReport& report) {
+  validate_tyre_scene(loaded, report);
+  validate_tread_block_scene(loaded, report);
+}
+
+nlohmann::json run_fe_body_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
+  return loaded.message.has_tread_block() ? run_tread_block_scene(loaded, options) : run_tyre_scene(loaded, options);
 }
 
 }  // namespace tyre_fe

@@ -35,12 +35,7 @@ class TreadBlockRun final : public cosim::Participant {
   }
   void abort(const std::string& reason) noexcept override {
     failed_ = true;
-    if (!port_) return;
-    try {
-      port_->finish(true, reason);
-    } catch (const std::exception&) {
-      // The peers learn of the failure by their time-out instead.
-    }
+    report_failure(port_, reason);
   }
   void plots(cosim::RunRecord& record) override {
     if (!csv_) return;

@@ -30,4 +30,9 @@ nlohmann::json run_tyre_scene(const cosim::LoadedScene& scene, const RunOptions&
 // The same for a scene's `tread_block` (tread_block.hpp): on a terrain solver only.
 nlohmann::json run_tread_block_scene(const cosim::LoadedScene& scene, const RunOptions& options);
 
+// The scene's FE body, whichever it has: the checks of the tyre and of the tread
+// block (each passes a scene without its section), and its run.
+void validate_fe_body_scene(const cosim::LoadedScene& scene, cosim::ValidationReport& report);
+nlohmann::json run_fe_body_scene(const cosim::LoadedScene& scene, const RunOptions& options);
+
 }  // namespace tyre_fe

@@ -56,4 +56,8 @@ class TerrainPort {
   virtual void finish(bool failed, const std::string& reason) = 0;
 };
 
+// A run that failed tells its peers through its port, if it has one; never throws
+// (if the message cannot go, the peers learn of the failure by their time-out).
+void report_failure(TerrainPort* port, const std::string& reason) noexcept;
+
 }  // namespace tyre_fe
