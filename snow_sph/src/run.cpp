@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "cosim/error.hpp"
@@ -137,7 +138,7 @@ class SphRun final : public cosim::Participant {
                    *contact_csv_ = nullptr;
   std::unique_ptr<cosim::VtkSeries> vtk_;
   double wall_at_coupling_s_ = 0.0, exchange_wait_s_ = 0.0;
-  std::uint64_t exchange_ = 0;
+  std::uint64_t exchange_ = 0, windows_ = 0;  // windows_: advance() calls (coupled: windows)
   bool stopped_ = false;
   double dt_min_ = 1e300, dt_max_ = 0.0, dt_sum_ = 0.0;
   std::size_t clamped_ = 0;
@@ -266,6 +267,14 @@ bool SphRun::advance() {
     return false;
   if (!port_ && bodies_at_rest()) return false;
   const StepStats st = solver_->advance();
+  ++windows_;
+  if (st.substeps > 1 && solver_->substepped_windows() == 1)
+    std::fprintf(stderr,
+                 "[%s] t = %s s: the terrain's stable limit %s s fell below the coupling window %s s; "
+                 "it sub-steps (%u steps in this window; docs/coupling.md)\n",
+                 scene_.name().c_str(), cosim::number_text(solver_->time()).c_str(),
+                 cosim::number_text(solver_->smallest_limit_dt()).c_str(), cosim::number_text(st.dt).c_str(),
+                 st.substeps);
   if (port_ && !exchange_surface(exchange_ + 1)) {
     // The surface's owner ended the run during this step.
     solver_->complete_step();
@@ -373,7 +382,7 @@ void SphRun::finalize(cosim::RunRecord& record) {
   nlohmann::json& summary = record.summary();
   const double wall = record.wall_s();
   const auto steps = solver.steps();
-  summary["dt_s"] = {{"min", steps ? dt_min_ : 0.0}, {"mean", steps ? dt_sum_ / steps : 0.0}, {"max", dt_max_},
+  summary["dt_s"] = {{"min", windows_ ? dt_min_ : 0.0}, {"mean", windows_ ? dt_sum_ / windows_ : 0.0}, {"max", dt_max_},
                      {"smallest_stability_limit", solver.smallest_limit_dt()}};
   summary["energy"] = energy_json(solver.energy());
   summary["wall_clamps"] = clamped_;
@@ -392,8 +401,11 @@ void SphRun::finalize(cosim::RunRecord& record) {
     perf["coupled_wall_s"] = wall - wall_at_coupling_s_;
     perf["exchange_wait_s"] = exchange_wait_s_;
     perf["compute_s"] = compute;
-    perf["compute_s_per_step"] = steps ? compute / steps : 0.0;
+    perf["compute_s_per_step"] = windows_ ? compute / windows_ : 0.0;  // per window
     perf["coupling_window_s"] = summary["coupled_dt_s"];
+    // Windows in which the terrain's own limit fell below the window (docs/coupling.md).
+    perf["terrain_substepped_windows"] = solver.substepped_windows();
+    perf["terrain_most_substeps_per_window"] = solver.most_substeps();
     perf["active_particle_share"] = solver.mean_active_share();
     perf["held_load_window_limit_s"] = solver.held_load_limit_dt();
     perf["smallest_terrain_stability_limit_s"] = solver.smallest_limit_dt();

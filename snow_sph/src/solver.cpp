@@ -528,7 +528,8 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   last_surface_ = surface;
   if (!surface) return;
   // Exchange 0 is made with the particles at t_0, before the first step.
-  const double dt = exchange == 0 ? stable_dt() : step_dt_;
+  // The contact's step is the window over which its force is held.
+  const double dt = exchange == 0 ? stable_dt() : window_dt_;
   if (exchange == 0) {
     // Multi-rate: the owner holds these loads over the window (docs/coupling.md).
     held_load_limit_dt_ = held_load_window_limit(*surface, surface_params_.stiffness_N_per_m, m_.settings.spacing);
@@ -539,9 +540,10 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
                          "or a softer coupling.contact_stiffness_scale");
   }
   // The owner sent this surface after completing the window of the last
-  // exchange, whose loads the last kick gave the particles: that window counts.
+  // exchange, whose loads the window's kicks gave the particles: that window counts.
   if (exchange > 0)
-    for (int c = 0; c < 3; ++c) surface_impulse_[c] += last_kick_ * surface_force_[c];
+    for (int c = 0; c < 3; ++c) surface_impulse_[c] += window_surface_kick_ * surface_force_[c];
+  window_surface_kick_ = 0.0;
   Particles& p = m_.particles;
   const std::size_t n = p.n_real;
   a_before_.resize(3 * n);
@@ -550,16 +552,18 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   surface_contact(*surface, surface_params_, n, p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(),
                   p.vz.data(), p.mass.data(), dt, p.ax.data(), p.ay.data(), p.az.data(), surface_loads_,
                   &friction_history_, p.id.data());
-  // The force of the surface on each particle, kept for the work it does over
-  // the next kick (step()), and its total (momentum exchanged with the owner).
+  // The force of the surface on each particle, held over the next window (its
+  // sub-steps and the work it does in their kicks), and its total (momentum
+  // exchanged with the owner).
   double fx = 0.0, fy = 0.0, fz = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const double dfx = p.mass[i] * (p.ax[i] - a_before_[3 * i]), dfy = p.mass[i] * (p.ay[i] - a_before_[3 * i + 1]),
                  dfz = p.mass[i] * (p.az[i] - a_before_[3 * i + 2]);
-    a_before_[3 * i] = dfx, a_before_[3 * i + 1] = dfy, a_before_[3 * i + 2] = dfz;
+    p.surface_fx[i] = dfx, p.surface_fy[i] = dfy, p.surface_fz[i] = dfz;
     fx += dfx, fy += dfy, fz += dfz;
   }
   surface_force_[0] = fx, surface_force_[1] = fy, surface_force_[2] = fz;
+  surface_held_ = true;
 }
 
 void Solver::prepare() {
@@ -713,41 +717,113 @@ StepStats Solver::step() {
 }
 
 StepStats Solver::advance() {
+  const double window = m_.settings.fixed_dt;
+  if (!coupled_ || !(window > 0.0)) return advance_by(stable_dt());
+  // Coupled: one step per window while the terrain's Courant number stays at or
+  // below 1 (as the window was agreed); beyond, k equal sub-steps at the CFL
+  // factor, re-planned for what is left if the limit falls further inside.
+  StepStats stats;
+  stats.dt = window;
+  stats.substeps = 0;
+  double left = window;
+  std::uint64_t pieces = 0;  // sub-steps left, this one included
+  double h = window;
+  for (;;) {
+    const double limit = stability_limit_dt();
+    smallest_limit_dt_ = std::min(smallest_limit_dt_, limit);
+    if (pieces == 0 || h > limit) {
+      pieces = left > limit ? static_cast<std::uint64_t>(std::ceil(left / (m_.settings.cfl * limit))) : 1;
+      if (stats.substeps + pieces > kMaxSubsteps)
+        throw cosim::Error("the terrain's stable limit " + cosim::number_text(limit) + " s at t = " +
+                           cosim::number_text(time_) + " s (" + limit_cause() + ") would take more than " +
+                           std::to_string(kMaxSubsteps) + " sub-steps in the coupling window " +
+                           cosim::number_text(window) + " s");
+      h = left / static_cast<double>(pieces);
+    }
+    const bool last = pieces == 1;
+    const StepStats sub = advance_by(last ? left : h);  // the last closes the window
+    stats.clamped += sub.clamped;
+    stats.rebuilt = stats.rebuilt || sub.rebuilt;
+    ++stats.substeps;
+    if (last) break;
+    hold_surface_force();
+    complete_step();
+    left -= h;
+    --pieces;
+  }
+  window_dt_ = window;
+  if (stats.substeps > 1) ++substepped_windows_;
+  most_substeps_ = std::max(most_substeps_, stats.substeps);
+  return stats;
+}
+
+void Solver::hold_surface_force() {
+  if (!surface_held_) return;
+  Particles& p = m_.particles;
+  auto add = [&](std::size_t i) {
+    const double inv_m = 1.0 / p.mass[i];
+    p.ax[i] += p.surface_fx[i] * inv_m, p.ay[i] += p.surface_fy[i] * inv_m, p.az[i] += p.surface_fz[i] * inv_m;
+  };
+  if (domain_)
+    for (std::uint32_t i : move_list_) add(i);
+  else
+    for (std::size_t i = 0; i < p.n_real; ++i) add(i);
+}
+
+StepStats Solver::advance_by(double dt) {
   Particles& p = m_.particles;
   StepStats stats;
-  const double dt = stable_dt();
   stats.dt = dt;
+  window_dt_ = dt;
   // Kick: v^{n+1/2} = v^{n-1/2} + a^n (dt_prev + dt)/2 (first step: half kick).
   const double kick = steps_ == 0 ? 0.5 * dt : 0.5 * (dt_prev_ + dt);
+  // The coupled surface's force in a^n is kicked with this step's length, not
+  // the mean of two: it is held over the window's steps, which change length
+  // from window to window when the terrain sub-steps, and its impulse over a
+  // window must be the window times the force (for equal steps the two agree).
+  const double surface_kick = steps_ == 0 ? kick : dt;
+  const double extra = surface_held_ ? surface_kick - kick : 0.0;
   auto kick_drift = [&](std::size_t i) {
     p.vx[i] += kick * p.ax[i], p.vy[i] += kick * p.ay[i], p.vz[i] += kick * p.az[i];
+    p.x[i] += dt * p.vx[i], p.y[i] += dt * p.vy[i], p.z[i] += dt * p.vz[i];
+  };
+  auto kick_held_drift = [&](std::size_t i) {
+    const double c = extra / p.mass[i];
+    p.vx[i] += kick * p.ax[i] + c * p.surface_fx[i], p.vy[i] += kick * p.ay[i] + c * p.surface_fy[i];
+    p.vz[i] += kick * p.az[i] + c * p.surface_fz[i];
     p.x[i] += dt * p.vx[i], p.y[i] += dt * p.vy[i], p.z[i] += dt * p.vz[i];
   };
   // Work of the coupled surface's forces of the last exchange over this kick,
   // with the mean of the velocities before and after it (the central-difference
   // work; the velocity before alone books F^2 dt^2 / 2m too little a step, which
   // grows with the step: docs/coupling.md).
-  if (coupled_ && a_before_.size() >= 3 * p.n_real) {
+  if (surface_held_) {
     double work = 0.0;
-    const double* df = a_before_.data();
     auto contact_work = [&](std::size_t i) {
-      const double fx = df[3 * i], fy = df[3 * i + 1], fz = df[3 * i + 2];
+      const double fx = p.surface_fx[i], fy = p.surface_fy[i], fz = p.surface_fz[i];
       if (fx == 0.0 && fy == 0.0 && fz == 0.0) return 0.0;
-      const double mx = p.vx[i] + 0.5 * kick * p.ax[i], my = p.vy[i] + 0.5 * kick * p.ay[i],
-                   mz = p.vz[i] + 0.5 * kick * p.az[i];
-      return kick * (fx * mx + fy * my + fz * mz);
+      const double c = 0.5 * extra / p.mass[i];
+      const double mx = p.vx[i] + 0.5 * kick * p.ax[i] + c * fx, my = p.vy[i] + 0.5 * kick * p.ay[i] + c * fy,
+                   mz = p.vz[i] + 0.5 * kick * p.az[i] + c * fz;
+      return surface_kick * (fx * mx + fy * my + fz * mz);
     };
     if (domain_)
       for (std::uint32_t i : move_list_) work += contact_work(i);
     else
       for (std::size_t i = 0; i < p.n_real; ++i) work += contact_work(i);
     energy_.external_work += work;
+    window_surface_kick_ += surface_kick;
   }
-  if (domain_)
+  if (extra != 0.0) {
+    if (domain_)
+      cosim::parallel_for("sph.kick_drift", move_list_.size(), [&](std::size_t k) { kick_held_drift(move_list_[k]); });
+    else
+      cosim::parallel_for("sph.kick_drift", p.n_real, kick_held_drift);
+  } else if (domain_) {
     cosim::parallel_for("sph.kick_drift", move_list_.size(), [&](std::size_t k) { kick_drift(move_list_[k]); });
-  else
+  } else {
     cosim::parallel_for("sph.kick_drift", p.n_real, kick_drift);
-  last_kick_ = kick;
+  }
   for (auto& b : m_.bodies) {
     if (b.prescribed_velocity) {
       b.vz = b.prescribed_vz;

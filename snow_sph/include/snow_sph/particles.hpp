@@ -20,6 +20,9 @@ struct Particles {
   std::vector<double> sound_speed;         // current elastic wave speed
   std::vector<double> eps_vol_pl;          // snow: volumetric plastic strain (compaction +)
   std::vector<double> plastic_work;        // snow: accumulated plastic work [J]
+  // Force of a coupled surface on the particle [N], from the last exchange and
+  // held over the coupling window (solver.hpp); zero when not coupled.
+  std::vector<double> surface_fx, surface_fy, surface_fz;
   std::vector<std::uint16_t> material;     // index into Model::materials
   std::vector<std::uint32_t> id;           // stable particle id (output)
   std::vector<std::uint32_t> neighbour_count;
@@ -47,7 +50,7 @@ struct Particles {
   std::vector<std::vector<double>*> real_fields() {
     return {&x, &y, &z, &vx, &vy, &vz, &ax, &ay, &az, &mass, &density, &density_rate,
             &sxx, &syy, &szz, &sxy, &syz, &sxz, &pressure, &sound_speed, &eps_vol_pl,
-            &plastic_work};
+            &plastic_work, &surface_fx, &surface_fy, &surface_fz};
   }
 
   // Reorders the real particles by `order` (order[k] = old index of new k).

@@ -45,9 +45,10 @@ struct EnergyBalance {
 };
 
 struct StepStats {
-  double dt = 0.0;
+  double dt = 0.0;            // the step; coupled: the coupling window
   std::size_t clamped = 0;
   bool rebuilt = false;
+  std::uint32_t substeps = 1;  // coupled: steps taken inside the window
 };
 
 class Solver {
@@ -92,6 +93,12 @@ class Solver {
   void initialise();
   // The stages of one step of size stable_dt() (or the fixed step) up to the
   // particle forces of the new time, without the coupled surface ...
+  // Coupled, the fixed step is the coupling window, and the terrain sub-steps
+  // inside it when its own stable limit falls below it (docs/coupling.md, "The
+  // terrain sub-steps"): k equal steps at the CFL factor, the surface's force of
+  // the last exchange held on the particles over all of them and kicked with
+  // each sub-step's length, so that its impulse over the window is exactly the
+  // window times the force, as the surface's owner books it.
   StepStats advance();
   // ... and its end, after the coupled surface's contact: energies, active domain.
   void complete_step();
@@ -104,6 +111,11 @@ class Solver {
   double stability_limit_dt() const;    // Courant number 1: a fixed step above it is refused
   std::string limit_cause() const;      // what sets stability_limit_dt(), for messages
   double smallest_limit_dt() const { return smallest_limit_dt_; }  // over the steps taken
+  // Coupled: windows the terrain sub-stepped, and the most sub-steps in one.
+  std::uint64_t substepped_windows() const { return substepped_windows_; }
+  std::uint32_t most_substeps() const { return most_substeps_; }
+  // Sub-steps allowed in one window before the run stops with the limit's cause.
+  static constexpr std::uint32_t kMaxSubsteps = 1000;
   const EnergyBalance& energy() const { return energy_; }
   const NeighbourList& neighbours() const { return list_; }
   std::uint64_t interactions() const { return interactions_; }
@@ -114,6 +126,10 @@ class Solver {
   double pressure_at(double x, double y, double z) const;
 
  private:
+  // One central-difference step of length dt up to the forces of the new time.
+  StepStats advance_by(double dt);
+  // Adds the held surface force to the accelerations after a sub-step's force pass.
+  void hold_surface_force();
   void rebuild_if_needed(bool force);
   void compute_rates();
   // Correct: the corrected velocity gradient (gradient_correction.hpp); a template
@@ -153,16 +169,19 @@ class Solver {
   SurfaceContactParameters surface_params_;
   SurfaceContactResult surface_loads_;
   FrictionHistory friction_history_;  // elastic sticks, keyed by the stable particle id
-  // Accelerations before the surface contact, then the surface's force per
-  // particle [N] (its work over the next kick).
+  // Accelerations before the surface contact (scratch of contact_surface()).
   std::vector<double> a_before_;
+  bool surface_held_ = false;  // Particles::surface_f* hold an exchange's force
   bool prepared_ = false;
   mutable double smallest_limit_dt_ = 1e30;
   double held_load_limit_dt_ = 0.0;
   const ContactSurface* last_surface_ = nullptr;
   double surface_force_[3] = {0, 0, 0};    // on the particles, last exchange
   double surface_impulse_[3] = {0, 0, 0};  // committed windows
-  double last_kick_ = 0.0;                 // kick factor of the last step
+  double window_surface_kick_ = 0.0;       // the surface force's kicks since the last exchange [s]
+  double window_dt_ = 0.0;                 // the last window advance() took
+  std::uint64_t substepped_windows_ = 0;
+  std::uint32_t most_substeps_ = 1;
   // Active domain.
   double active_margin_m_ = 0.0, wake_speed_ = 0.0;
   bool domain_ = false;
