@@ -64,6 +64,7 @@ void print_force_means(const nlohmann::json& r, const nlohmann::json& performanc
       {"groove_force_N", "groove force F2"},
       {"rolling_resistance_force_N", "rolling-resistance force F5"},
       {"drawbar_pull_N", "drawbar pull F2 + F3 - F1 - F5"},
+      {"rim_longitudinal_force_N", "tyre on the rim, along x"},
       {"net_longitudinal_pressure_force_N", "net longitudinal pressure -F1 + F2"},
       {"vertical_pressure_force_N", "vertical pressure force F4"}};
   for (const auto& [key, label] : rows)

@@ -203,7 +203,7 @@ TEST(CoupledRun, KillingTheTerrainStopsTheOthersWithinFiveSecondsAndKeepsTheForc
   EXPECT_GE(rows.size(), rows_before);
   for (std::size_t r = 1; r < rows.size(); ++r) {
     const auto v = numbers(rows[r]);
-    ASSERT_EQ(v.size(), 20u) << rows[r];
+    ASSERT_EQ(v.size(), 21u) << rows[r];
     ASSERT_EQ(v[step], static_cast<double>(r - 1));
   }
 }

@@ -41,7 +41,7 @@ TEST(Launcher, RunStartsOnlyTheTerrainSolver) {
 // variants' meshes with their counts (issue: tyre_fe, item 4).
 TEST(Launcher, TyreSceneStartsOnlyTheTyreSolverAndWritesEachTreadVariant) {
   long previous_sipe_walls = -1;
-  for (const char* variant : {"SMOOTH", "RIB", "BLOCK", "BLOCK_SIPES"}) {
+  for (const char* variant : {"SMOOTH", "RIB", "BLOCK", "BLOCK_SIPES_MESHED"}) {
     const auto dir = test_support::scratch(std::string("launcher_tyre_") + variant);
     auto [code, out] = shell(bin() + "/cosim run " + test_support::scene_path("tyre_tread_variants") + " --out " +
                              dir + " --mesh-only --set tyre.tread.variant=" + variant);
@@ -54,11 +54,22 @@ TEST(Launcher, TyreSceneStartsOnlyTheTyreSolverAndWritesEachTreadVariant) {
     const long grooves = r["facets_by_tag"]["groove_wall"].get<long>();
     const long sipes = r["facets_by_tag"]["sipe_wall"].get<long>();
     EXPECT_EQ(grooves > 0, std::string(variant) != "SMOOTH") << variant;
-    EXPECT_EQ(sipes > 0, std::string(variant) == "BLOCK_SIPES") << variant;
+    EXPECT_EQ(sipes > 0, std::string(variant) == "BLOCK_SIPES_MESHED") << variant;
     EXPECT_GT(std::filesystem::file_size(dir + "/mesh3d.vtk"), 1000u);
     previous_sipe_walls = sipes;
   }
   EXPECT_GT(previous_sipe_walls, 0);
+}
+
+// BLOCK_SIPES is the thesis's treatment (block mesh, equivalent friction on the
+// tread top): slit fields with it would count the sipes twice, and are refused
+// with the field and the variant that cuts slits named.
+TEST(Launcher, TheThesisSipesRefuseSlitFields) {
+  auto [code, out] = shell(bin() + "/cosim check " + test_support::scene_path("tyre_tread_variants") +
+                           " --set tyre.tread.variant=BLOCK_SIPES");
+  EXPECT_NE(code, 0) << out;
+  EXPECT_NE(out.find("sipes_per_block"), std::string::npos) << out;
+  EXPECT_NE(out.find("BLOCK_SIPES_MESHED"), std::string::npos) << out;
 }
 
 TEST(Launcher, StudyWritesTableAndPlot) {

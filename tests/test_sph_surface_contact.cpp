@@ -60,10 +60,39 @@ TEST(SurfaceContact, PenaltyForceOnAParticleBelowAFacetCentreIsSplitEquallyOverI
   EXPECT_NEAR(p.ax, 0.0, 1e-12);
   for (int a = 0; a < 4; ++a) EXPECT_NEAR(l.node_fz[a], kStiffness * delta / 4.0, 1e-9);
   EXPECT_NEAR(l.facet_normal_force_N[0], kStiffness * delta, 1e-9);
-  EXPECT_NEAR(l.facet_contact_area_m2[0], 4e-4, 1e-15);
-  EXPECT_NEAR(l.facet_pressure_Pa[0], kStiffness * delta / 4e-4, 1e-6);
+  // One particle touches the (2 r)^2 = 1e-4 m^2 of the 4e-4 m^2 facet it stands for.
+  EXPECT_NEAR(l.facet_contact_area_m2[0], 1e-4, 1e-15);
+  EXPECT_NEAR(l.facet_pressure_Pa[0], kStiffness * delta / 1e-4, 1e-6);
   EXPECT_EQ(l.particles_in_contact[0], 1u);
   EXPECT_NEAR(l.elastic_energy_J, 0.5 * kStiffness * delta * delta, 1e-15);
+}
+
+// The contact area is the touched part of a facet: a lattice of particles at
+// spacing 2 r under a facet covers it in (2 r)^2 patches, so a facet of 10 x 10
+// patches under a 4 x 4 block of particles touches 16 patches (16 %), the whole
+// facet under a 10 x 10 block, and never more than the facet under a denser one.
+TEST(SurfaceContact, TheContactAreaIsTheTouchedPartOfTheFacet) {
+  ContactSurface s;
+  const double d = 2.0 * kRadius, side = 10 * d;
+  add_flat_quad(s, 0.0, 0.0, side, side, 0.0, 0.3);
+  auto touched = [&](int per_side, double spacing) {
+    std::vector<double> x, y, z, vx, vy, vz, m, ax, ay, az;
+    for (int i = 0; i < per_side; ++i)
+      for (int j = 0; j < per_side; ++j) {
+        x.push_back((i + 0.5) * spacing), y.push_back((j + 0.5) * spacing), z.push_back(-0.9 * kRadius);
+        vx.push_back(0), vy.push_back(0), vz.push_back(0), m.push_back(kMass), ax.push_back(0), ay.push_back(0),
+            az.push_back(0);
+      }
+    SurfaceContactResult loads;
+    snow_sph::surface_contact(s, params(), x.size(), x.data(), y.data(), z.data(), vx.data(), vy.data(), vz.data(),
+                              m.data(), kDt, ax.data(), ay.data(), az.data(), loads);
+    return loads;
+  };
+  const SurfaceContactResult part = touched(4, d);
+  EXPECT_NEAR(part.facet_contact_area_m2[0], 16 * d * d, 1e-15);
+  EXPECT_NEAR(part.facet_pressure_Pa[0], part.facet_normal_force_N[0] / (16 * d * d), 1e-6);
+  EXPECT_NEAR(touched(10, d).facet_contact_area_m2[0], side * side, 1e-15);
+  EXPECT_NEAR(touched(15, side / 15).facet_contact_area_m2[0], side * side, 1e-15);
 }
 
 TEST(SurfaceContact, NoForceBeyondTheRadiusOrBeyondTheDepthBehindTheFacet) {

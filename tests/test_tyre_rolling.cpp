@@ -83,6 +83,17 @@ TEST(TyreRolling, FreeRollingRadiusAndDrivingTorqueBalance) {
   EXPECT_NEAR(road_moment, net_torque, kMomentTolerance * net_torque);
   EXPECT_NEAR(d["rm2_Nm"].get<double>(), kDriveTorque_Nm, 0.01 * kDriveTorque_Nm);  // spin at steady state
   expect_energy_balance_closed(d);
+  // The rim holds the tyre at its prescribed speed: the only longitudinal forces on
+  // the tyre are the road's and the rim's (the inflation pressure has no x
+  // resultant: the cavity's openings, the bead circles, lie in planes y = const), so
+  // over the window their means differ by the tyre's momentum change over it
+  // alone, which a steady roll keeps small: measured 0.74 % (8 N of 1,106 N). The
+  // 36 pitches pass the contact about 11 times in the 0.25 s window and the tyre's
+  // momentum swings with each passage; the unfinished passage is what remains.
+  // Bound 1 %; the force summed over the wrong nodes (the tread's, or the rim
+  // node's own) is off by all of it.
+  const double fx = d["road_longitudinal_force_N"];
+  EXPECT_NEAR(d["rim_longitudinal_force_N"].get<double>(), fx, 0.01 * std::fabs(fx));
 }
 
 }  // namespace

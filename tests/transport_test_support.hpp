@@ -140,7 +140,7 @@ inline ContactLoads loads_sample(std::uint64_t run_id, std::uint64_t step, std::
   return l;
 }
 inline WheelState wheel_sample(std::uint64_t run_id, std::uint64_t step) {
-  return {header(run_id, step), 0.125, 0.3125, 1.5, 2.7778, 9.25, 310.5, -42.75, 4000.5};
+  return {header(run_id, step), 0.125, 0.3125, 1.5, 2.7778, 9.25, 310.5, -42.75, 4000.5, -187.25};
 }
 inline ForceSummary forces_sample(std::uint64_t run_id, std::uint64_t step) {
   return {header(run_id, step), 812.5, 95.25, 33.125, 41.5, 717.25, -12.5, 0.0625, 0.0185};
@@ -204,6 +204,7 @@ inline void expect_same(const WheelState& a, const WheelState& b) {
   EXPECT_EQ(a.applied_torque_Nm, b.applied_torque_Nm);
   EXPECT_EQ(a.reaction_moment_y_Nm, b.reaction_moment_y_Nm);
   EXPECT_EQ(a.wheel_load_N, b.wheel_load_N);
+  EXPECT_EQ(a.rim_longitudinal_force_N, b.rim_longitudinal_force_N);
 }
 inline void expect_same(const ForceSummary& a, const ForceSummary& b) {
   expect_same(a.header, b.header);

@@ -75,6 +75,8 @@ class CouplerRun final : public cosim::Participant {
   struct Row {
     double t;
     ForceDecomposition d;
+    double rim_longitudinal_force_N;  // the tyre's force on the rim, forward +
+    double contact_force_x_N;         // the terrain's force on the tyre (F2 + F3 - F1)
   };
   Session& session_;
   const cosim::LoadedScene& loaded_;
@@ -114,7 +116,10 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   nlohmann::json& summary = record.summary();
   const FrictionRules rules = friction_rules(loaded_);
   const TerrainKind terrain = terrain_kind(scene_);
-  const bool sipes = scene_.tyre().tread().variant() == sc::BLOCK_SIPES;
+  // The thesis's sipes (BLOCK_SIPES) are the equivalent coefficient on the tread
+  // top; sipes cut into the mesh (BLOCK_SIPES_MESHED) never get it on top of the slits.
+  const auto variant = scene_.tyre().tread().variant();
+  const bool sipes = variant == sc::BLOCK_SIPES;
   auto& p = session_.participant();
   mesh_in_ = p.create_reader<tp::SurfaceMesh>();
   tyre_kinematics_in_ = p.create_reader<tp::SurfaceKinematics>(channel_qos<tp::SurfaceKinematics>(kTyreChannel));
@@ -148,6 +153,9 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
                                                  : "multi-rate: one exchange per terrain step, the tyre sub-cycles "
                                                    "with the terrain's loads held"}};
   summary["friction"] = {{"terrain", terrain_kind_name(terrain)}, {"tread_has_sipes", sipes},
+                         {"sipe_treatment", sipes ? "equivalent coefficient on the tread top (thesis 6.1)"
+                                            : variant == sc::BLOCK_SIPES_MESHED ? "slits in the mesh, base coefficient"
+                                                                                : "none"},
                          {"base", rules.base_mu}, {"sipe_equivalent_on_tread_top", rules.sipe_equivalent_mu}};
   if (!options_.quiet)
     std::fprintf(stderr, "[coupler] started: window %.4g s, %d tyre sub-steps (tyre %.4g s, terrain %.4g s)\n",
@@ -169,7 +177,7 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
                          "vertical_pressure_force_N", "rolling_resistance_moment_Nm", "rolling_resistance_force_N",
                          "drawbar_pull_N", "net_longitudinal_pressure_force_N", "traction_minus_rrf_N", "sinkage_m",
                          "contact_area_m2", "rim_x_m", "rim_z_m", "spin_rate_rad_per_s", "applied_torque_Nm",
-                         "rm2_Nm", "contact_force_x_N", "contact_force_z_N"});
+                         "rm2_Nm", "contact_force_x_N", "contact_force_z_N", "rim_longitudinal_force_N"});
   // The pace of the coupled run: wall time against simulated time, every
   // kPaceEvery windows (bench/coupled_bench.sh measures the speed in contact from it).
   pace_csv_ = &record.series("pace.csv", {"time_s", "windows", "wall_time_s"});
@@ -227,8 +235,8 @@ bool CouplerRun::advance() {
              d.vertical_pressure_force_N, d.rolling_resistance_moment_Nm, d.rolling_resistance_force_N,
              d.drawbar_pull_N, d.net_longitudinal_pressure_force_N, d.traction_minus_rrf_N, d.sinkage_m,
              d.contact_area_m2, wheel_.rim_x_m, wheel_.rim_z_m, wheel_.spin_rate_radps, wheel_.applied_torque_Nm,
-             wheel_.reaction_moment_y_Nm, fx, fz});
-  rows_.push_back({sim_time_, d});
+             wheel_.reaction_moment_y_Nm, fx, fz, wheel_.rim_longitudinal_force_N});
+  rows_.push_back({sim_time_, d, wheel_.rim_longitudinal_force_N, fx});
   last_facets_ = facet_loads;
   ++step_;
   if (step_ % kPaceEvery == 0) pace_csv_->row({sim_time_, double(step_), record_->wall_s()});
@@ -248,6 +256,7 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
   const double window = c.average_last_s() > 0 ? c.average_last_s() : scene_.tyre().stages().average_last_s();
   const double from = rows_.empty() ? 0.0 : rows_.back().t - window;
   ForceDecomposition mean;
+  double rim_fx = 0.0, contact_fx = 0.0;
   long n = 0;
   for (const auto& r : rows_) {
     if (window > 0 && r.t < from) continue;
@@ -258,16 +267,30 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
     mean.net_longitudinal_pressure_force_N += d.net_longitudinal_pressure_force_N;
     mean.traction_minus_rrf_N += d.traction_minus_rrf_N, mean.sinkage_m += d.sinkage_m;
     mean.contact_area_m2 += d.contact_area_m2, mean.vertical_pressure_force_N += d.vertical_pressure_force_N;
+    rim_fx += r.rim_longitudinal_force_N, contact_fx += r.contact_force_x_N;
     ++n;
   }
   auto avg = [&](double v) { return n ? v / n : 0.0; };
   results["averaging_window_s"] = window;
+  if (n) {
+    for (const auto& r : rows_)
+      if (!(window > 0 && r.t < from)) {
+        results["averaging_window_start_s"] = r.t;
+        break;
+      }
+    results["averaging_window_end_s"] = rows_.back().t;
+  }
   results["averaged_steps"] = n;
   results["traction_force_N"] = avg(mean.traction_force_N);
   results["motion_resistance_N"] = avg(mean.motion_resistance_N);
   results["groove_force_N"] = avg(mean.groove_force_N);
   results["rolling_resistance_force_N"] = avg(mean.rolling_resistance_force_N);
   results["drawbar_pull_N"] = avg(mean.drawbar_pull_N);
+  // Beside it, what a test rig would measure: the tyre's longitudinal force on
+  // the rim, and the terrain's on the tyre (F2 + F3 - F1); the drawbar pull is the
+  // latter less F5 (docs/force_decomposition.md, "Drawbar pull and the rim's force").
+  results["rim_longitudinal_force_N"] = avg(rim_fx);
+  results["terrain_longitudinal_force_N"] = avg(contact_fx);
   results["net_longitudinal_pressure_force_N"] = avg(mean.net_longitudinal_pressure_force_N);
   results["traction_minus_rrf_N"] = avg(mean.traction_minus_rrf_N);
   results["vertical_pressure_force_N"] = avg(mean.vertical_pressure_force_N);

@@ -526,10 +526,18 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     }
     *history = std::move(next);
   }
+  // The touched part of each facet: a surface particle stands for the (2 r)^2 = dx^2
+  // of terrain surface around it (particles on a lattice of spacing dx), shared
+  // equally between the facets it touches, up to the facet's own area.
+  const double patch = 4.0 * radius * radius;
+  for (std::size_t i = 0; i < n_particles; ++i)
+    for (int k2 = 0; k2 < contacts[i].count; ++k2)
+      loads.facet_contact_area_m2[contacts[i].c[k2].facet] += patch / contacts[i].count;
   for (std::size_t f = 0; f < nf; ++f) {
     if (loads.particles_in_contact[f] == 0) continue;
-    loads.facet_contact_area_m2[f] = area[f];
-    loads.facet_pressure_Pa[f] = area[f] > 0 ? loads.facet_normal_force_N[f] / area[f] : 0.0;
+    const double touched = std::min(loads.facet_contact_area_m2[f], area[f]);
+    loads.facet_contact_area_m2[f] = touched;
+    loads.facet_pressure_Pa[f] = touched > 0 ? loads.facet_normal_force_N[f] / touched : 0.0;
   }
 }
 

@@ -158,6 +158,7 @@ void view(const WheelState& s, cosim_wire_WheelState& w, Scratch&) {
   w.applied_torque_Nm = s.applied_torque_Nm;
   w.reaction_moment_y_Nm = s.reaction_moment_y_Nm;
   w.wheel_load_N = s.wheel_load_N;
+  w.rim_longitudinal_force_N = s.rim_longitudinal_force_N;
 }
 void from_wire(const cosim_wire_WheelState& w, WheelState& s) {
   from_wire(w.header, s.header);
@@ -169,6 +170,7 @@ void from_wire(const cosim_wire_WheelState& w, WheelState& s) {
   s.applied_torque_Nm = w.applied_torque_Nm;
   s.reaction_moment_y_Nm = w.reaction_moment_y_Nm;
   s.wheel_load_N = w.wheel_load_N;
+  s.rim_longitudinal_force_N = w.rim_longitudinal_force_N;
 }
 
 void view(const ForceSummary& s, cosim_wire_ForceSummary& w, Scratch&) {

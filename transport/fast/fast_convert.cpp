@@ -132,6 +132,7 @@ void to_wire(const WheelState& s, cosim_wire::WheelState& w) {
   w.applied_torque_Nm(s.applied_torque_Nm);
   w.reaction_moment_y_Nm(s.reaction_moment_y_Nm);
   w.wheel_load_N(s.wheel_load_N);
+  w.rim_longitudinal_force_N(s.rim_longitudinal_force_N);
 }
 void from_wire(cosim_wire::WheelState& w, WheelState& s) {
   from_wire(w.header(), s.header);
@@ -143,6 +144,7 @@ void from_wire(cosim_wire::WheelState& w, WheelState& s) {
   s.applied_torque_Nm = w.applied_torque_Nm();
   s.reaction_moment_y_Nm = w.reaction_moment_y_Nm();
   s.wheel_load_N = w.wheel_load_N();
+  s.rim_longitudinal_force_N = w.rim_longitudinal_force_N();
 }
 
 void to_wire(const ForceSummary& s, cosim_wire::ForceSummary& w) {

@@ -38,6 +38,7 @@ void DdsTerrainPort::send(const cosim::SurfaceState& surface, const RimState& ri
   w.forward_speed_mps = rim.vx, w.spin_rate_radps = rim.omega;
   w.applied_torque_Nm = rim.applied_torque_Nm, w.reaction_moment_y_Nm = rim.rm2_Nm;
   w.wheel_load_N = rim.wheel_load_N;
+  w.rim_longitudinal_force_N = rim.tyre_force_x_N;
   wheel_out_->write(w);
   cosim::coupling::to_topic(surface, session_.run_id(), kinematics_);
   kinematics_out_->write(kinematics_);

@@ -89,6 +89,9 @@ class TyreRun final : public cosim::Participant {
   double ground_fx() const { return s_.road.force_x_N + s_.terrain.load_totals.force_N[0]; }
   double ground_fy() const { return s_.road.force_y_N + s_.terrain.load_totals.force_N[1]; }
   double ground_fz() const { return s_.road.force_z_N + s_.terrain.load_totals.force_N[2]; }
+  // What the tyre stands on, for the names of its forces: the terrain of a
+  // coupled run, else the rigid road.
+  std::string ground(const char* quantity) const { return std::string(port_ ? "terrain_" : "road_") + quantity; }
   double ground_area() const { return s_.road.contact_area_m2 + s_.terrain.load_totals.contact_area_m2; }
 
   const cosim::LoadedScene& loaded_;
@@ -118,7 +121,7 @@ class TyreRun final : public cosim::Participant {
   double slow_since_ = 0.0;  // the rim's speed below the rest speed since this time
   // Rolling: the averaging window's sums.
   double spin_up_radius_ = 0.0, t_window_ = 0.0, average_window_ = 0.0;
-  double x_w_ = 0, a_w_ = 0, fx_sum_ = 0, m_sum_ = 0, fz_sum_ = 0, h_sum_ = 0, w_sum_ = 0;
+  double x_w_ = 0, a_w_ = 0, fx_sum_ = 0, rim_fx_sum_ = 0, m_sum_ = 0, fz_sum_ = 0, h_sum_ = 0, w_sum_ = 0;
   long n_w_ = 0;
   bool in_window_ = false;
   // Coupled run.
@@ -209,7 +212,8 @@ double TyreRun::initialize(cosim::RunRecord& record) {
   s_.pressure_Pa = t_.inflation_pressure_pa();
   csv_ = &record.series("tyre.csv", {"time_s", "stage", "rim_x_m", "rim_z_m", "rim_angle_rad", "rim_vx_m_per_s",
                                      "rim_vz_m_per_s", "rim_omega_rad_per_s", "rim_vertical_force_N", "rm2_Nm",
-                                     "road_force_x_N", "road_force_y_N", "road_force_z_N", "contact_area_m2",
+                                     ground("force_x_N"), ground("force_y_N"), ground("force_z_N"),
+                                     "rim_longitudinal_force_N", "contact_area_m2",
                                      "kinetic_J", "internal_J", "hourglass_J", "external_work_J",
                                      "energy_balance_error"});
   csv_interval_ = scene_.output().csv_interval_s();
@@ -253,7 +257,8 @@ bool TyreRun::advance() {
 void TyreRun::output(cosim::RunRecord&) {
   if (s_.time_s >= next_csv_ || stage_done_) {
     csv_->row({s_.time_s, double(stage_), s_.rim.x, s_.rim.z, s_.rim.angle, s_.rim.vx, s_.rim.vz, s_.rim.omega,
-               s_.rim.tyre_force_z_N, s_.rim.rm2_Nm, ground_fx(), ground_fy(), ground_fz(), ground_area(),
+               s_.rim.tyre_force_z_N, s_.rim.rm2_Nm, ground_fx(), ground_fy(), ground_fz(), s_.rim.tyre_force_x_N,
+               ground_area(),
                s_.energy.kinetic_J, s_.energy.internal_J, s_.energy.hourglass_J, s_.energy.external_work_J,
                s_.energy.balance_error()});
     next_csv_ = s_.time_s + csv_interval_;
@@ -393,6 +398,7 @@ bool TyreRun::each_step() {
       if (s_.time_s < t_window_) return false;
       if (!in_window_) x_w_ = s_.rim.x, a_w_ = s_.rim.angle, in_window_ = true;
       fx_sum_ += ground_fx(), m_sum_ += s_.rim.rm2_Nm, fz_sum_ += ground_fz(), ++n_w_;
+      rim_fx_sum_ += s_.rim.tyre_force_x_N;
       h_sum_ += s_.rim.z - s_.road.height_m, w_sum_ += s_.rim.omega;
       return false;
     case kDone:
@@ -427,10 +433,12 @@ void TyreRun::end_stage() {
       results["vertical_deflection_m"] = radius0_ - loaded_radius;
       results["contact_area_m2"] = ground_area();
       results["rim_vertical_force_N"] = s_.rim.tyre_force_z_N;  // the tyre holding the rim up
-      results["road_vertical_force_N"] = ground_fz();
+      results[ground("vertical_force_N")] = ground_fz();
       results["wheel_load_N"] = load_;
-      // Depth of the lowest tyre point below the undisturbed terrain surface z = 0.
-      if (port_) results["sinkage_m"] = free_radius(model, s_) - s_.rim.z;
+      // The rim's drop below where the undeformed tyre would touch the undisturbed
+      // terrain surface z = 0: the sinkage less the tyre's deflection. The sinkage
+      // (the rut below the undisturbed surface, thesis 5.3, 6.2) is the coupler's.
+      if (port_) results["rim_drop_m"] = free_radius(model, s_) - s_.rim.z;
       results["kinetic_energy_after_loading_J"] = s_.energy.kinetic_J;
       // On a terrain solver the footprint is the coupler's (contact_pressure.png).
       if (!port_) write_footprint(record_->out_dir(), model, s_);
@@ -446,13 +454,17 @@ void TyreRun::end_stage() {
       results["rolling_revolutions"] = s_.rim.angle / (2.0 * M_PI);
       results["rolling_radius_m"] = std::fabs(turned) > 1e-9 ? (s_.rim.x - x_w_) / turned : 0.0;
       results["rm2_Nm"] = n ? m_sum_ / n : 0.0;
-      results["road_longitudinal_force_N"] = n ? fx_sum_ / n : 0.0;
-      results["road_vertical_force_rolling_N"] = n ? fz_sum_ / n : 0.0;
+      results[ground("longitudinal_force_N")] = n ? fx_sum_ / n : 0.0;
+      results[ground("vertical_force_rolling_N")] = n ? fz_sum_ / n : 0.0;
+      // The tyre's force on the rim along x (forward positive), which holds the
+      // rim's prescribed forward speed: at a steady state the ground's longitudinal
+      // force on the tyre (docs/force_decomposition.md, "Drawbar pull").
+      results["rim_longitudinal_force_N"] = n ? rim_fx_sum_ / n : 0.0;
       // Window means: the rim height above the road is the lever arm of the road's
       // longitudinal force about the axle (moment balance of the tyre at steady state).
       results["loaded_radius_rolling_m"] = n ? h_sum_ / n : s_.rim.z - s_.road.height_m;
       results["spin_rate_rad_per_s"] = n ? w_sum_ / n : s_.rim.omega;
-      results["road_longitudinal_force_moment_Nm"] =
+      results[ground("longitudinal_force_moment_Nm")] =
           n ? fx_sum_ / n * results["loaded_radius_rolling_m"].get<double>() : 0.0;
       results["energy_balance_error"] = s_.energy.balance_error();
       results["energy_balance_J"] = s_.energy.balance_J();

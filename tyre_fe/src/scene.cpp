@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "cosim/error.hpp"
 
@@ -102,7 +103,8 @@ TreadVariant variant_of(sc::TreadVariantKind k) {
   switch (k) {
     case sc::RIB: return TreadVariant::rib;
     case sc::BLOCK: return TreadVariant::block;
-    case sc::BLOCK_SIPES: return TreadVariant::block_sipes;
+    case sc::BLOCK_SIPES: return TreadVariant::block;  // the sipes are the coupler's friction (scene.proto)
+    case sc::BLOCK_SIPES_MESHED: return TreadVariant::block_sipes;
     default: return TreadVariant::smooth;
   }
 }
@@ -129,7 +131,7 @@ void validate_tyre_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepo
   if (mesh.tread_layers() < 1) r.fail(loc.child("mesh").where("tread_layers"), "must be >= 1");
   const auto& p = t.tread();
   const auto tl = loc.child("tread");
-  if (p.variant() == sc::TREAD_UNSET) r.fail(tl.where("variant"), "choose SMOOTH, RIB, BLOCK or BLOCK_SIPES");
+  if (p.variant() == sc::TREAD_UNSET) r.fail(tl.where("variant"), "choose SMOOTH, RIB, BLOCK, BLOCK_SIPES or BLOCK_SIPES_MESHED");
   if (!(p.groove_depth_m() > 0)) r.fail(tl.where("groove_depth_m"), "must be > 0");
   if (!(p.tread_base_m() > 0)) r.fail(tl.where("tread_base_m"), "must be > 0");
   if (p.pitch_count() < 1) r.fail(tl.where("pitch_count"), "must be >= 1");
@@ -141,9 +143,17 @@ void validate_tyre_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepo
       r.fail(tl.where("circumferential_groove_y_m"), "a patterned tread needs circumferential grooves");
     if (!(p.circumferential_groove_width_m() > 0)) r.fail(tl.where("circumferential_groove_width_m"), "must be > 0");
   }
-  if (p.variant() == sc::BLOCK || p.variant() == sc::BLOCK_SIPES)
+  if (p.variant() == sc::BLOCK || p.variant() == sc::BLOCK_SIPES || p.variant() == sc::BLOCK_SIPES_MESHED)
     if (!(p.lateral_groove_width_m() > 0)) r.fail(tl.where("lateral_groove_width_m"), "must be > 0");
-  if (p.variant() == sc::BLOCK_SIPES) {
+  if (p.variant() == sc::BLOCK_SIPES)
+    for (const auto& [field, given] : {std::pair<const char*, bool>{"sipes_per_block", p.sipes_per_block() != 0},
+                                       {"sipe_width_m", p.sipe_width_m() != 0},
+                                       {"sipe_depth_m", p.sipe_depth_m() != 0}})
+      if (given)
+        r.fail(tl.where(field), "BLOCK_SIPES is the thesis's block tread with the sipes' equivalent friction "
+                                "on its top and no slits in the mesh (section 6.1); cut slits with "
+                                "variant: BLOCK_SIPES_MESHED");
+  if (p.variant() == sc::BLOCK_SIPES_MESHED) {
     if (p.sipes_per_block() < 1) r.fail(tl.where("sipes_per_block"), "must be >= 1");
     if (!(p.sipe_depth_m() > 0 && p.sipe_depth_m() <= p.groove_depth_m()))
       r.fail(tl.where("sipe_depth_m"), "must be in (0, groove_depth_m]");

@@ -64,8 +64,11 @@ struct SurfaceContactResult {
   // Per surface node: force ON THE SURFACE (the reaction of the particles) [N].
   std::vector<double> node_fx, node_fy, node_fz;
   // Per facet: normal force on the surface, compressive > 0 (the particles push
-  // along -n) [N]; tangential (friction) force on the surface [N]; the facet's
-  // area if it carries contact, else 0 [m^2]; pressure = normal force / area [Pa].
+  // along -n) [N]; tangential (friction) force on the surface [N]; the touched
+  // part of the facet's area: (2 r)^2 per particle in contact (a particle's share
+  // of the terrain surface on a lattice of spacing 2 r; split equally over the
+  // facets it touches), at most the facet's area, 0 without contact [m^2];
+  // pressure = normal force / touched area [Pa].
   std::vector<double> facet_normal_force_N, facet_tangential_x_N, facet_tangential_y_N, facet_tangential_z_N;
   // Per facet: the pressure (non-friction) force on the surface, -fn along each
   // contact's own direction (the facet normal, or at an edge or corner the line

@@ -78,6 +78,7 @@ struct WheelState {
   double applied_torque_Nm = 0.0;
   double reaction_moment_y_Nm = 0.0;  // RM2
   double wheel_load_N = 0.0;
+  double rim_longitudinal_force_N = 0.0;  // the tyre's force on the rim along x, forward +
 };
 
 // Per step: the thesis's force decomposition (F1, F2, F3, F5 and the rest).
