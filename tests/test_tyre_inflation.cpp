@@ -14,14 +14,20 @@ namespace {
 const std::vector<std::string> kCoarse = {"tyre.mesh.element_size_m=0.012", "tyre.tread.elements_per_pitch=1",
                                           "tyre.stages.transfer_check_s=0.0015"};
 
-TEST(TyreInflation, RevolvedModelKeepsTheAxisymmetricGrowthAndStaysAtRest) {
-  const auto out = tyre_support::scratch("tyre_inflation");
-  const auto s = tyre_support::run(tyre_support::scene_path("tyre_inflation"), kCoarse, out);
+// The 3D growth is the crown radius's time mean over the transfer check: the
+// transferred tyre breathes undamped about its 3D equilibrium, and the radius at
+// the check's end alone swings by +-7 % over 12 ms on the shipped scene (it gave
+// -1.09 % at the shipped 3 ms check, -3.0 % at 12 ms, while the mean stays
+// within 0.3 %).
+void expect_transfer_at_rest(const std::vector<std::string>& sets, const std::string& name) {
+  const auto out = tyre_support::scratch(name);
+  const auto s = tyre_support::run(tyre_support::scene_path("tyre_inflation"), sets, out);
   ASSERT_EQ(s["status"], "completed");
   const auto& r = s["results"];
   const double axi = r["axisym_radial_growth_m"], growth3d = r["radial_growth_3d_m"];
-  std::printf("radial growth: axisymmetric %.4f mm, 3D %.4f mm (%.3f %%); KE after transfer %.3e J "
-              "(max %.3e J), IE %.3f J\n", axi * 1e3, growth3d * 1e3, r["radial_growth_difference_percent"].get<double>(),
+  std::printf("%s: radial growth axisymmetric %.4f mm, 3D %.4f mm (%.3f %%; at the end %.4f mm); KE after "
+              "transfer %.3e J (max %.3e J), IE %.3f J\n", name.c_str(), axi * 1e3, growth3d * 1e3,
+              r["radial_growth_difference_percent"].get<double>(), r["radial_growth_3d_end_m"].get<double>() * 1e3,
               r["kinetic_energy_after_transfer_J"].get<double>(), r["max_kinetic_energy_after_transfer_J"].get<double>(),
               r["internal_energy_after_transfer_J"].get<double>());
   // A 235/75R15 passenger tyre grows by a few millimetres at the crown when inflated.
@@ -34,6 +40,15 @@ TEST(TyreInflation, RevolvedModelKeepsTheAxisymmetricGrowthAndStaysAtRest) {
   // one-point quad and the revolved one-point hex (docs/tyre_fe.md).
   EXPECT_LT(r["max_kinetic_energy_after_transfer_J"].get<double>(),
             0.01 * r["internal_energy_after_transfer_J"].get<double>());
+}
+
+TEST(TyreInflation, RevolvedModelKeepsTheAxisymmetricGrowthAndStaysAtRest) {
+  expect_transfer_at_rest(kCoarse, "tyre_inflation");
+}
+
+// The shipped scene as a user runs it (8 mm, 120 divisions, 3 ms check).
+TEST(TyreInflation, TheShippedSceneKeepsTheAxisymmetricGrowth) {
+  expect_transfer_at_rest({}, "tyre_inflation_shipped");
 }
 
 }  // namespace

@@ -115,6 +115,8 @@ class TyreRun final : public cosim::Participant {
   double stage_t0_ = 0.0, stage_t_end_ = 0.0;
   // Transfer check.
   double max_kinetic_ = 0.0;
+  // Crown growth over the transfer check: time integral, least and largest [m].
+  double growth_integral_ = 0.0, growth_time_ = 0.0, growth_min_ = 1e30, growth_max_ = -1e30;
   // Loading.
   double radius0_ = 0.0, load_ = 0.0, load_ramp_ = 0.0, loading_start_ = 0.0, previous_kinetic_ = 0.0;
   bool at_rest_ = false;
@@ -215,7 +217,7 @@ double TyreRun::initialize(cosim::RunRecord& record) {
                                      ground("force_x_N"), ground("force_y_N"), ground("force_z_N"),
                                      "rim_longitudinal_force_N", "contact_area_m2",
                                      "kinetic_J", "internal_J", "hourglass_J", "external_work_J",
-                                     "energy_balance_error"});
+                                     "energy_balance_error", "crown_radial_growth_m"});
   csv_interval_ = scene_.output().csv_interval_s();
   max_steps_ = scene_.time().max_steps();
   frames_ = std::make_unique<FrameWriter>(out, options_.write_vtk ? scene_.output().vtk_interval_s() : 0.0);
@@ -260,7 +262,7 @@ void TyreRun::output(cosim::RunRecord&) {
                s_.rim.tyre_force_z_N, s_.rim.rm2_Nm, ground_fx(), ground_fy(), ground_fz(), s_.rim.tyre_force_x_N,
                ground_area(),
                s_.energy.kinetic_J, s_.energy.internal_J, s_.energy.hourglass_J, s_.energy.external_work_J,
-               s_.energy.balance_error()});
+               s_.energy.balance_error(), mean_radius_of(model_->mesh, s_, centre_) - r0_});
     next_csv_ = s_.time_s + csv_interval_;
   }
   frames_->maybe_write(*model_, s_);
@@ -370,9 +372,13 @@ RimDrive TyreRun::drive_now() const {
 
 bool TyreRun::each_step() {
   switch (stage_) {
-    case kTransferCheck:
+    case kTransferCheck: {
       max_kinetic_ = std::max(max_kinetic_, s_.energy.kinetic_J);
+      const double growth = mean_radius_of(model_->mesh, s_, centre_) - r0_;
+      growth_integral_ += growth * s_.dt_s, growth_time_ += s_.dt_s;
+      growth_min_ = std::min(growth_min_, growth), growth_max_ = std::max(growth_max_, growth);
       return false;
+    }
     case kLoading: {
       const auto& st = t_.stages();
       if (st.loading_kinetic_damping()) {
@@ -413,7 +419,15 @@ void TyreRun::end_stage() {
   nlohmann::json& results = record_->results();
   switch (stage_) {
     case kTransferCheck: {
-      results["radial_growth_3d_m"] = mean_radius_of(model.mesh, s_, centre_) - r0_;
+      // The transferred tyre is not exactly in 3D equilibrium (the one-point hex
+      // against the axisymmetric quad, docs/tyre_fe.md) and breathes about it
+      // undamped: the crown radius at the check's end depends on where in that
+      // swing the check ends (0.714-0.824 mm over 12 ms on the shipped scene).
+      // Its time mean over the check is the 3D equilibrium's growth.
+      results["radial_growth_3d_end_m"] = mean_radius_of(model.mesh, s_, centre_) - r0_;
+      results["radial_growth_3d_m"] =
+          growth_time_ > 0.0 ? growth_integral_ / growth_time_ : results["radial_growth_3d_end_m"].get<double>();
+      if (growth_time_ > 0.0) results["radial_growth_3d_swing_m"] = {growth_min_, growth_max_};
       results["kinetic_energy_after_transfer_J"] = s_.energy.kinetic_J;
       results["max_kinetic_energy_after_transfer_J"] = max_kinetic_;
       results["internal_energy_after_transfer_J"] = s_.energy.internal_J;
