@@ -11,6 +11,7 @@
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/process.hpp"
+#include "cosim/result_references.hpp"
 #include "coupled_run.hpp"
 #include "coupler/scene_checks.hpp"
 #include "snow_sph/scene.hpp"
@@ -143,6 +144,50 @@ void tabulate(const scene::Study& s, const std::string& out_dir, const std::stri
   plot(out_dir, s.result_field(), s.name() + ": error against run time");
 }
 
+std::string assignment(const std::string& field, double value) {
+  char b[64];
+  std::snprintf(b, sizeof b, "=%.17g", value);
+  return field + b;
+}
+
+int case_index(const scene::Study& s, const std::string& label) {
+  for (int c = 0; c < s.cases_size(); ++c)
+    if (s.cases(c).label() == label) return c;
+  return -1;
+}
+
+// The case's own sets, then those derived from earlier cases' results, then the
+// spin of its slip ratio (thesis eq. 5.1). `earlier` null: placeholders (1) for
+// the derived values, to validate the fields before anything runs.
+std::vector<std::string> case_sets(const scene::Study& s, int c, const std::vector<nlohmann::json>* earlier,
+                                   const std::string& study_file, double forward_speed_m_per_s, bool coupled) {
+  const auto& k = s.cases(c);
+  std::vector<std::string> sets(k.set().begin(), k.set().end());
+  auto result_of = [&](const std::string& label, const std::string& result) -> double {
+    if (!earlier) return 1.0;
+    const nlohmann::json* v = result_at((*earlier)[case_index(s, label)]["results"], result);
+    if (!v || !v->is_number())
+      throw Error("study case '" + k.label() + "': case '" + label + "' has no result '" + result + "'");
+    return v->get<double>();
+  };
+  for (const auto& d : k.derived())
+    sets.push_back(assignment(d.field(), (d.scale() != 0.0 ? d.scale() : 1.0) * result_of(d.from_case(), d.result())));
+  if (k.has_slip_ratio()) {
+    // A coupled run nests the tyre's results under "tyre"; a tyre on the road has them at the top.
+    std::string radius_key = "tyre.rolling_radius_m";
+    if (earlier && !result_at((*earlier)[case_index(s, k.rolling_radius_case())]["results"], radius_key))
+      radius_key = "rolling_radius_m";
+    const double r = result_of(k.rolling_radius_case(), radius_key);
+    sets.push_back(assignment("tyre.rim.angular_velocity_rad_per_s", forward_speed_m_per_s / (r * (1.0 - k.slip_ratio()))));
+    if (coupled) {  // F5 = RRM / r is the coupler's
+      sets.push_back(assignment("coupling.rolling_radius_m", r));
+      sets.push_back("coupling.rolling_radius_source=case '" + k.rolling_radius_case() + "' of " + study_file +
+                     " (its tyre rolling_radius_m, zero traction)");
+    }
+  }
+  return sets;
+}
+
 }  // namespace
 
 int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk, bool resume) {
@@ -153,13 +198,31 @@ int run_study(const std::string& study_file, const std::string& out_dir, bool no
   if (s.scene().empty()) report.fail(loc.where("scene"), "a study needs a scene");
   if (s.cases_size() == 0) report.fail(loc.where("cases"), "a study needs cases");
   if (s.result_field().empty()) report.fail(loc.where("result_field"), "name the summary result to compare");
+  for (int c = 0; c < s.cases_size(); ++c) {
+    const auto& k = s.cases(c);
+    const auto at = loc.child("cases", c);
+    for (int d = 0; d < k.derived_size(); ++d) {
+      const int from = case_index(s, k.derived(d).from_case());
+      if (from < 0 || from >= c)
+        report.fail(at.child("derived", d).where("from_case"),
+                    "'" + k.derived(d).from_case() + "' is not the label of an earlier case");
+    }
+    if (k.has_slip_ratio()) {
+      const int from = case_index(s, k.rolling_radius_case());
+      if (from < 0 || from >= c)
+        report.fail(at.where("rolling_radius_case"),
+                    "a case with a slip ratio needs the label of an earlier case that measured the rolling radius");
+      if (!(k.slip_ratio() < 1.0)) report.fail(at.where("slip_ratio"), "must be below 1 (eq. 5.1: w = v / (r (1 - sigma)))");
+    }
+  }
   report.throw_if_failed();
   const std::string scene_file = folder_of(study_file) + "/" + s.scene();
   make_folder(out_dir);
   // Validate every case before running any.
   std::vector<std::unique_ptr<LoadedScene>> scenes;
+  const bool coupled = load_scene(scene_file, {})->message.has_coupling();
   for (int c = 0; c < s.cases_size(); ++c) {
-    scenes.push_back(load_scene(scene_file, std::vector<std::string>(s.cases(c).set().begin(), s.cases(c).set().end())));
+    scenes.push_back(load_scene(scene_file, case_sets(s, c, nullptr, study_file, 0.0, coupled)));
     check_scene(*scenes.back());
   }
   // Run every case, then tabulate (the last case is the reference when comparing with the finest).
@@ -167,8 +230,12 @@ int run_study(const std::string& study_file, const std::string& out_dir, bool no
   try {
     for (int c = 0; c < s.cases_size(); ++c) {
       const auto& k = s.cases(c);
+      const bool derived = k.derived_size() > 0 || k.has_slip_ratio();
       RunRequest request{scene_file, out_dir + "/" + k.label(),
-                         std::vector<std::string>(k.set().begin(), k.set().end()), false, no_vtk};
+                         case_sets(s, c, &summaries, study_file, scenes[c]->message.tyre().rim().forward_speed_m_per_s(),
+                                   coupled),
+                         false, no_vtk};
+      if (derived) scenes[c] = load_scene(scene_file, request.sets);  // the overrides --resume compares
       nlohmann::json earlier = resume ? completed_before(request.out_dir, *scenes[c]) : nullptr;
       if (!earlier.is_null()) {
         std::fprintf(stderr, "cosim study: case %d/%d '%s' completed before (%s/summary.json): kept\n", c + 1,

@@ -2,6 +2,7 @@
 // real executables (cosim starts snow_sph as a child process).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -70,6 +71,37 @@ TEST(Launcher, TheThesisSipesRefuseSlitFields) {
   EXPECT_NE(code, 0) << out;
   EXPECT_NE(out.find("sipes_per_block"), std::string::npos) << out;
   EXPECT_NE(out.find("BLOCK_SIPES_MESHED"), std::string::npos) << out;
+}
+
+// A study's later cases take settings from earlier cases' results: the spin of a
+// slip ratio from the rolling radius a towed case measured (thesis eq. 5.1:
+// w = v / (r (1 - sigma)), v = 2.7778 m/s in the scene), and a field as a multiple
+// of a result. The values the cases ran with are their overrides, printed to 17
+// digits, so they match the formula to rounding (1e-14 relative).
+TEST(Launcher, StudyCasesDeriveTheirSettingsFromEarlierCases) {
+  const auto dir = test_support::scratch("launcher_study_derived");
+  auto [code, out] = shell("OMP_NUM_THREADS=1 " + bin() + "/cosim study " + test_support::source_dir() +
+                           "/tests/test_launcher_derived.textproto --out " + dir + " --no-vtk");
+  ASSERT_EQ(code, 0) << out;
+  auto summary = [&](const std::string& c) { return nlohmann::json::parse(std::ifstream(dir + "/" + c + "/summary.json")); };
+  const auto towed = summary("towed"), slip = summary("slip20"), derived = summary("derived");
+  const double r = towed["results"]["rolling_radius_m"];
+  ASSERT_GT(r, 0.3);
+  const double w = std::stod(slip["overrides"]["tyre.rim.angular_velocity_rad_per_s"].get<std::string>());
+  EXPECT_NEAR(w, 2.7778 / (r * (1.0 - 0.2)), 1e-14 * w);
+  const double torque = std::stod(derived["overrides"]["tyre.rim.drive_torque_Nm"].get<std::string>());
+  EXPECT_NEAR(torque, -2.0 * towed["results"]["rm2_Nm"].get<double>(), 1e-14 * std::fabs(torque));
+
+  // A case that takes its radius from a case that has not run yet is refused
+  // before anything runs, naming the field.
+  const std::string bad = dir + "/bad_study.textproto";
+  std::ofstream(bad) << "name: \"bad\" scene: \"none.textproto\" result_field: \"x\"\n"
+                        "cases { label: \"a\" slip_ratio: 0.1 rolling_radius_case: \"b\" }\n"
+                        "cases { label: \"b\" }\n";
+  auto [bad_code, bad_out] = shell(bin() + "/cosim study " + bad + " --out " + dir + "/bad");
+  EXPECT_NE(bad_code, 0);
+  EXPECT_NE(bad_out.find("cases[0].rolling_radius_case"), std::string::npos) << bad_out;
+  EXPECT_NE(bad_out.find("earlier case"), std::string::npos) << bad_out;
 }
 
 TEST(Launcher, StudyWritesTableAndPlot) {

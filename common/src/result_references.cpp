@@ -5,9 +5,7 @@
 
 namespace cosim {
 
-namespace {
-
-const nlohmann::json* find_result(const nlohmann::json& results, const std::string& path) {
+const nlohmann::json* result_at(const nlohmann::json& results, const std::string& path) {
   const nlohmann::json* node = &results;
   std::size_t start = 0;
   while (true) {
@@ -20,14 +18,12 @@ const nlohmann::json* find_result(const nlohmann::json& results, const std::stri
   }
 }
 
-}  // namespace
-
 nlohmann::json compare_with_references(const ResultReferences& references, const nlohmann::json& results) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& r : references) {
     nlohmann::json entry = {{"result", r.result()}, {"reference", r.value()}, {"source", r.source()},
                             {"value", nullptr}, {"relative_difference", nullptr}};
-    const nlohmann::json* value = find_result(results, r.result());
+    const nlohmann::json* value = result_at(results, r.result());
     if (value && value->is_number()) {
       entry["value"] = value->get<double>();
       if (r.value() != 0.0) entry["relative_difference"] = value->get<double>() / r.value() - 1.0;

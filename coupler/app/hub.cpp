@@ -172,6 +172,7 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   x_ = mesh_.x_m, y_ = mesh_.y_m, z_ = mesh_.z_m;
   rolling_radius_ = c.rolling_radius_m();
   record.results()["rolling_radius_for_F5_m"] = rolling_radius_;
+  record.results()["rolling_radius_source"] = c.rolling_radius_source().empty() ? "scene" : c.rolling_radius_source();
   csv_ = &record.series("forces.csv",
                         {"time_s", "step", "traction_force_N", "motion_resistance_N", "groove_force_N",
                          "vertical_pressure_force_N", "rolling_resistance_moment_Nm", "rolling_resistance_force_N",

@@ -15,6 +15,10 @@ namespace cosim {
 // result), reference, source, relative_difference (null likewise)}. A dotted
 // result ("tyre.sinkage_m") looks into nested objects.
 using ResultReferences = google::protobuf::RepeatedPtrField<scene::ResultReference>;
+
+// The result at a dotted path ("tyre.rm2_Nm") in a summary's "results"; null
+// when there is none.
+const nlohmann::json* result_at(const nlohmann::json& results, const std::string& path);
 nlohmann::json compare_with_references(const ResultReferences& references, const nlohmann::json& results);
 
 // The comparison as text, one line per entry; empty when there is none.
