@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "cosim/process.hpp"
 #include "cosim/result_references.hpp"
 #include "coupled_run.hpp"
+#include "study_report.hpp"
+#include "study_table.hpp"
 #include "coupler/scene_checks.hpp"
 #include "snow_sph/scene.hpp"
 #include "tyre_fe/run.hpp"
@@ -64,27 +67,7 @@ int run_scene_processes(const RunRequest& request) {
 
 namespace {
 
-std::string csv_number(const nlohmann::json& v) {
-  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";  // e.g. plate_at_rest
-  if (!v.is_number()) return "";
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", v.get<double>());
-  return b;
-}
-
-void plot(const std::string& dir, const std::string& field, const std::string& title) {
-  PlotOptions o;
-  o.title = title, o.x_label = "wall time [s]", o.y_label = "|error| in " + field + " [%]";
-  o.log_x = true, o.key = false;
-  o.extra_commands = "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.1\n";
-  const std::string table = dir + "/table.csv";
-  if (!plot_png(dir + "/error_vs_runtime.png", o,
-                {{table, "6:(abs($9)*100)", "linespoints pt 7 ps 1.5 lw 2", ""},
-                 {table, "6:(abs($9)*100):1", "labels offset 0,1.2", ""}}))
-    throw Error("gnuplot failed on " + dir + "/error_vs_runtime.png (is gnuplot installed? scripts/setup.sh installs it)");
-}
-
-// The case's earlier run, if it completed with the same overrides (cosim study --resume).
+// The case's earlier run, if it completed with the same overrides.
 nlohmann::json completed_before(const std::string& case_dir, const LoadedScene& scene) {
   const std::string file = case_dir + "/summary.json";
   if (!std::ifstream(file)) return nullptr;
@@ -101,83 +84,60 @@ nlohmann::json completed_before(const std::string& case_dir, const LoadedScene& 
   return summary;
 }
 
-// table.csv, summary.json and the plot of the cases in `summaries` (the first ones of the study).
-void tabulate(const scene::Study& s, const std::string& out_dir, const std::string& scene_file,
-              const std::vector<nlohmann::json>& summaries) {
-  const double reference = s.compare_with_last_case()
-                               ? summaries.back()["results"][s.result_field()].get<double>()
-                               : s.reference_value();
-  std::ofstream table(out_dir + "/table.csv");
-  table << "case,particle_spacing_m,size,time_step_s,steps,wall_time_s," << s.result_field()
-        << ",reference,relative_error";
-  for (const auto& f : s.extra_result_fields()) table << "," << f;
-  table << "\n";
-  nlohmann::json rows = nlohmann::json::array();
-  for (std::size_t c = 0; c < summaries.size(); ++c) {
-    const auto& summary = summaries[c];
-    const auto& label = s.cases(static_cast<int>(c)).label();
-    const auto& result = summary["results"][s.result_field()];
-    const double value = result.get<double>();
-    const double error = reference != 0 ? (value - reference) / reference : 0.0;
-    // size: particles (SPH) or elements (FE); time step: the mean (SPH) or the fixed step (FE).
-    const nlohmann::json size = summary.contains("particles") ? summary["particles"] : summary.value("elements", nlohmann::json());
-    nlohmann::json dt = summary.value("dt_s", nlohmann::json());
-    if (dt.is_object()) dt = dt.value("mean", nlohmann::json());
-    table << label << "," << csv_number(summary.value("particle_spacing_m", nlohmann::json())) << ","
-          << csv_number(size) << "," << csv_number(dt) << "," << summary["steps"].get<long>() << ","
-          << csv_number(summary["wall_time_s"]) << "," << csv_number(result) << "," << reference << ","
-          << csv_number(error);
-    nlohmann::json row = {{"case", label}, {"wall_time_s", summary["wall_time_s"]}, {s.result_field(), value},
-                          {"relative_error", error}, {"size", size}, {"steps", summary["steps"]}};
-    for (const auto& f : s.extra_result_fields()) {
-      table << "," << csv_number(summary["results"].value(f, nlohmann::json()));
-      row[f] = summary["results"].value(f, nlohmann::json());
-    }
-    table << "\n";
-    rows.push_back(row);
-  }
-  table.close();
-  write_json(out_dir + "/summary.json", {{"study", s.name()}, {"scene", scene_file},
-                                         {"reference_value", reference}, {"compared_with_last_case", s.compare_with_last_case()},
-                                         {"reference_source", s.reference_source()}, {"cases", rows},
-                                         {"cases_completed", summaries.size()}, {"cases_planned", s.cases_size()}});
-  plot(out_dir, s.result_field(), s.name() + ": error against run time");
-}
-
 std::string assignment(const std::string& field, double value) {
   char b[64];
   std::snprintf(b, sizeof b, "=%.17g", value);
   return field + b;
 }
 
-int case_index(const scene::Study& s, const std::string& label) {
-  for (int c = 0; c < s.cases_size(); ++c)
-    if (s.cases(c).label() == label) return c;
+int case_index(const std::vector<scene::StudyCase>& cases, const std::string& label) {
+  for (std::size_t c = 0; c < cases.size(); ++c)
+    if (cases[c].label() == label) return static_cast<int>(c);
   return -1;
+}
+
+// A result of an earlier case's run, or null.
+const nlohmann::json* earlier_result(const std::vector<nlohmann::json>& summaries, int c, const std::string& result) {
+  if (c < 0 || c >= static_cast<int>(summaries.size()) || summaries[c].is_null()) return nullptr;
+  const nlohmann::json* v = result_at(summaries[c]["results"], result);
+  return v && v->is_number() ? v : nullptr;
+}
+
+// The rolling radius an earlier case measured: a coupled run nests the tyre's
+// results under "tyre", a tyre on the road has them at the top.
+const nlohmann::json* measured_rolling_radius(const std::vector<nlohmann::json>& summaries, int c) {
+  const nlohmann::json* r = earlier_result(summaries, c, "tyre.rolling_radius_m");
+  return r ? r : earlier_result(summaries, c, "rolling_radius_m");
 }
 
 // The case's own sets, then those derived from earlier cases' results, then the
 // spin of its slip ratio (thesis eq. 5.1). `earlier` null: placeholders (1) for
-// the derived values, to validate the fields before anything runs.
-std::vector<std::string> case_sets(const scene::Study& s, int c, const std::vector<nlohmann::json>* earlier,
-                                   const std::string& study_file, double forward_speed_m_per_s, bool coupled) {
-  const auto& k = s.cases(c);
+// the derived values, to validate the fields before anything runs. Throws if an
+// earlier case it needs has not completed.
+std::vector<std::string> case_sets(const std::vector<scene::StudyCase>& cases, int c,
+                                   const std::vector<nlohmann::json>* earlier, const std::string& study_file,
+                                   double forward_speed_m_per_s, bool coupled) {
+  const auto& k = cases[c];
   std::vector<std::string> sets(k.set().begin(), k.set().end());
-  auto result_of = [&](const std::string& label, const std::string& result) -> double {
-    if (!earlier) return 1.0;
-    const nlohmann::json* v = result_at((*earlier)[case_index(s, label)]["results"], result);
-    if (!v || !v->is_number())
-      throw Error("study case '" + k.label() + "': case '" + label + "' has no result '" + result + "'");
-    return v->get<double>();
+  auto missing = [&](const std::string& label, const std::string& result) {
+    return Error("study case '" + k.label() + "': case '" + label + "' has no result '" + result + "'");
   };
-  for (const auto& d : k.derived())
-    sets.push_back(assignment(d.field(), (d.scale() != 0.0 ? d.scale() : 1.0) * result_of(d.from_case(), d.result())));
+  for (const auto& d : k.derived()) {
+    double value = 1.0;
+    if (earlier) {
+      const nlohmann::json* v = earlier_result(*earlier, case_index(cases, d.from_case()), d.result());
+      if (!v) throw missing(d.from_case(), d.result());
+      value = v->get<double>();
+    }
+    sets.push_back(assignment(d.field(), (d.scale() != 0.0 ? d.scale() : 1.0) * value));
+  }
   if (k.has_slip_ratio()) {
-    // A coupled run nests the tyre's results under "tyre"; a tyre on the road has them at the top.
-    std::string radius_key = "tyre.rolling_radius_m";
-    if (earlier && !result_at((*earlier)[case_index(s, k.rolling_radius_case())]["results"], radius_key))
-      radius_key = "rolling_radius_m";
-    const double r = result_of(k.rolling_radius_case(), radius_key);
+    double r = 1.0;
+    if (earlier) {
+      const nlohmann::json* v = measured_rolling_radius(*earlier, case_index(cases, k.rolling_radius_case()));
+      if (!v) throw missing(k.rolling_radius_case(), "tyre.rolling_radius_m");
+      r = v->get<double>();
+    }
     sets.push_back(assignment("tyre.rim.angular_velocity_rad_per_s", forward_speed_m_per_s / (r * (1.0 - k.slip_ratio()))));
     if (coupled) {  // F5 = RRM / r is the coupler's
       sets.push_back(assignment("coupling.rolling_radius_m", r));
@@ -188,80 +148,223 @@ std::vector<std::string> case_sets(const scene::Study& s, int c, const std::vect
   return sets;
 }
 
-}  // namespace
-
-int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk, bool resume) {
-  const auto study = load_study(study_file);
-  const auto& s = study->message;
-  const auto loc = study->locator();
+void validate_study(const scene::Study& s, const std::vector<scene::StudyCase>& cases, const FieldLocator& loc,
+                    const std::string& pass) {
   ValidationReport report;
   if (s.scene().empty()) report.fail(loc.where("scene"), "a study needs a scene");
-  if (s.cases_size() == 0) report.fail(loc.where("cases"), "a study needs cases");
+  if (cases.empty()) report.fail(loc.where("cases"), "a study needs cases (or grids)");
   if (s.result_field().empty()) report.fail(loc.where("result_field"), "name the summary result to compare");
-  for (int c = 0; c < s.cases_size(); ++c) {
-    const auto& k = s.cases(c);
-    const auto at = loc.child("cases", c);
+  std::map<std::string, int> seen;
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const auto& k = cases[c];
+    const bool explicit_case = static_cast<int>(c) < s.cases_size();
+    const std::string at = explicit_case ? loc.child("cases", static_cast<int>(c)).where("label")
+                                         : loc.where("grids") + " (case '" + k.label() + "')";
+    if (k.label().empty()) report.fail(at, "a case needs a label");
+    if (seen.count(k.label())) report.fail(at, "label '" + k.label() + "' is used twice");
+    seen[k.label()] = static_cast<int>(c);
+    for (const auto& p : k.parameter())
+      if (p.find('=') == std::string::npos || p.front() == '=')
+        report.fail(at, "parameter '" + p + "' is not COLUMN=VALUE");
+    if (!explicit_case) continue;
+    const auto cl = loc.child("cases", static_cast<int>(c));
     for (int d = 0; d < k.derived_size(); ++d) {
-      const int from = case_index(s, k.derived(d).from_case());
-      if (from < 0 || from >= c)
-        report.fail(at.child("derived", d).where("from_case"),
+      const int from = case_index(cases, k.derived(d).from_case());
+      if (from < 0 || from >= static_cast<int>(c))
+        report.fail(cl.child("derived", d).where("from_case"),
                     "'" + k.derived(d).from_case() + "' is not the label of an earlier case");
     }
     if (k.has_slip_ratio()) {
-      const int from = case_index(s, k.rolling_radius_case());
-      if (from < 0 || from >= c)
-        report.fail(at.where("rolling_radius_case"),
+      const int from = case_index(cases, k.rolling_radius_case());
+      if (from < 0 || from >= static_cast<int>(c))
+        report.fail(cl.where("rolling_radius_case"),
                     "a case with a slip ratio needs the label of an earlier case that measured the rolling radius");
-      if (!(k.slip_ratio() < 1.0)) report.fail(at.where("slip_ratio"), "must be below 1 (eq. 5.1: w = v / (r (1 - sigma)))");
+      if (!(k.slip_ratio() < 1.0)) report.fail(cl.where("slip_ratio"), "must be below 1 (eq. 5.1: w = v / (r (1 - sigma)))");
     }
+  }
+  if (!s.slip_radius_case().empty() && case_index(cases, s.slip_radius_case()) < 0)
+    report.fail(loc.where("slip_radius_case"), "'" + s.slip_radius_case() + "' is not the label of a case");
+  for (int p = 0; p < s.passes_size(); ++p)
+    if (s.passes(p).name().empty()) report.fail(loc.child("passes", p).where("name"), "a pass needs a name");
+  if (!pass.empty()) {
+    bool known = false;
+    std::string names;
+    for (const auto& p : s.passes()) known = known || p.name() == pass, names += " " + p.name();
+    if (!known)
+      report.fail(loc.where("passes"), "--pass " + pass + ": the study's passes are" + (names.empty() ? " none" : names));
   }
   report.throw_if_failed();
-  const std::string scene_file = folder_of(study_file) + "/" + s.scene();
-  make_folder(out_dir);
-  // Validate every case before running any.
-  std::vector<std::unique_ptr<LoadedScene>> scenes;
-  const bool coupled = load_scene(scene_file, {})->message.has_coupling();
-  for (int c = 0; c < s.cases_size(); ++c) {
-    scenes.push_back(load_scene(scene_file, case_sets(s, c, nullptr, study_file, 0.0, coupled)));
-    check_scene(*scenes.back());
-  }
-  // Run every case, then tabulate (the last case is the reference when comparing with the finest).
-  std::vector<nlohmann::json> summaries;
-  try {
-    for (int c = 0; c < s.cases_size(); ++c) {
-      const auto& k = s.cases(c);
-      const bool derived = k.derived_size() > 0 || k.has_slip_ratio();
-      RunRequest request{scene_file, out_dir + "/" + k.label(),
-                         case_sets(s, c, &summaries, study_file, scenes[c]->message.tyre().rim().forward_speed_m_per_s(),
-                                   coupled),
-                         false, no_vtk};
-      if (derived) scenes[c] = load_scene(scene_file, request.sets);  // the overrides --resume compares
-      nlohmann::json earlier = resume ? completed_before(request.out_dir, *scenes[c]) : nullptr;
-      if (!earlier.is_null()) {
-        std::fprintf(stderr, "cosim study: case %d/%d '%s' completed before (%s/summary.json): kept\n", c + 1,
-                     s.cases_size(), k.label().c_str(), request.out_dir.c_str());
-        summaries.push_back(std::move(earlier));
-      } else {
-        std::fprintf(stderr, "cosim study: case %d/%d '%s'\n", c + 1, s.cases_size(), k.label().c_str());
-        const int code = run_scene_processes(request);
-        if (code != 0) throw Error("study case '" + k.label() + "' failed (exit code " + std::to_string(code) + ")");
-        summaries.push_back(nlohmann::json::parse(read_file(request.out_dir + "/summary.json")));
-      }
-      if (!summaries.back()["results"][s.result_field()].is_number())
-        throw Error(loc.where("result_field") + ": summary of case '" + k.label() + "' has no result '" +
-                    s.result_field() + "'");
+}
+
+// The passes to go through: the study's, or one unnamed pass without overrides.
+std::vector<scene::StudyPass> passes_of(const scene::Study& s) {
+  if (s.passes_size() == 0) return {scene::StudyPass()};
+  return {s.passes().begin(), s.passes().end()};
+}
+
+std::string pass_dir(const std::string& out_dir, const scene::StudyPass& pass) {
+  return pass.name().empty() ? out_dir : out_dir + "/" + pass.name();
+}
+
+struct StudyPlan {
+  const scene::Study& study;
+  std::vector<scene::StudyCase> cases;
+  std::string study_file, scene_file;
+  bool coupled = false;
+};
+
+// The overrides of case c in `pass` (the pass's, then the case's), given the
+// pass's summaries so far; throws if an earlier case it needs is missing.
+std::vector<std::string> pass_case_sets(const StudyPlan& plan, const scene::StudyPass& pass, int c,
+                                        const std::vector<nlohmann::json>* earlier) {
+  std::vector<std::string> sets(pass.set().begin(), pass.set().end());
+  // The rim's speed of the case (eq. 5.1) as the pass and the case's own sets leave it.
+  std::vector<std::string> plain = sets;
+  plain.insert(plain.end(), plan.cases[c].set().begin(), plan.cases[c].set().end());
+  const double v = load_scene(plan.scene_file, plain)->message.tyre().rim().forward_speed_m_per_s();
+  const auto own = case_sets(plan.cases, c, earlier, plan.study_file, v, plan.coupled);
+  sets.insert(sets.end(), own.begin(), own.end());
+  return sets;
+}
+
+// Every completed run of the pass in DIR, as rows (cases whose earlier cases
+// are missing are left out), with the computed slip ratio.
+void gather_pass(const StudyPlan& plan, const scene::StudyPass& pass, const std::string& out_dir,
+                 std::vector<StudyRow>& rows) {
+  const auto& s = plan.study;
+  std::vector<nlohmann::json> summaries(plan.cases.size());
+  std::vector<double> speed(plan.cases.size(), 0.0);
+  const std::size_t first = rows.size();
+  for (std::size_t c = 0; c < plan.cases.size(); ++c) {
+    std::unique_ptr<LoadedScene> scene;
+    try {
+      scene = load_scene(plan.scene_file, pass_case_sets(plan, pass, static_cast<int>(c), &summaries));
+    } catch (const Error&) {
+      continue;  // an earlier case it depends on has not completed
     }
-  } catch (const Error& e) {
-    // Nothing completed is lost: the finished cases are tabulated, and --resume runs the rest.
-    if (!summaries.empty() && summaries.back()["results"][s.result_field()].is_number()) {
-      tabulate(s, out_dir, scene_file, summaries);
-      std::fprintf(stderr, "cosim study: wrote the %zu completed case(s) to %s/table.csv; `--resume` runs the rest\n",
-                   summaries.size(), out_dir.c_str());
+    summaries[c] = completed_before(pass_dir(out_dir, pass) + "/" + plan.cases[c].label(), *scene);
+    if (summaries[c].is_null()) continue;
+    speed[c] = scene->message.tyre().rim().forward_speed_m_per_s();
+    StudyRow row{pass.name(), plan.cases[c].label(), {}, {}, summaries[c]};
+    for (const auto& p : plan.cases[c].parameter()) {
+      const auto eq = p.find('=');
+      row.parameters[p.substr(0, eq)] = p.substr(eq + 1);
+    }
+    for (const auto& f : s.extra_result_fields())  // named columns: COLUMN=PATH
+      if (const auto eq = f.find('='); eq != std::string::npos)
+        row.computed[f.substr(0, eq)] = row_number(row, f.substr(eq + 1));
+    rows.push_back(std::move(row));
+  }
+  if (s.slip_radius_case().empty()) return;
+  // Eq. 5.1 with each run's mean spin and the reference case's rolling radius.
+  const nlohmann::json* r = measured_rolling_radius(summaries, case_index(plan.cases, s.slip_radius_case()));
+  if (!r) return;
+  for (std::size_t i = first; i < rows.size(); ++i) {
+    const int c = case_index(plan.cases, rows[i].label);
+    double omega = row_number(rows[i], "tyre.spin_rate_rad_per_s");
+    if (std::isnan(omega)) omega = row_number(rows[i], "spin_rate_rad_per_s");
+    if (std::isnan(omega) || omega == 0.0) continue;
+    rows[i].computed["slip_ratio"] = 1.0 - speed[c] / (r->get<double>() * omega);
+    rows[i].computed["slip_radius_m"] = r->get<double>();
+  }
+}
+
+std::vector<StudyRow> gather(const StudyPlan& plan, const std::string& out_dir) {
+  std::vector<StudyRow> rows;
+  for (const auto& pass : passes_of(plan.study)) gather_pass(plan, pass, out_dir, rows);
+  return rows;
+}
+
+// Runs the cases of one pass; a case that completed before with the same
+// overrides is kept when resuming.
+void run_pass(const StudyPlan& plan, const scene::StudyPass& pass, const StudyRequest& request) {
+  const auto& s = plan.study;
+  std::vector<nlohmann::json> summaries(plan.cases.size());
+  const std::string prefix = pass.name().empty() ? "" : "pass '" + pass.name() + "': ";
+  const int n = static_cast<int>(plan.cases.size());
+  for (int c = 0; c < n; ++c) {
+    const auto& k = plan.cases[c];
+    RunRequest run{plan.scene_file, pass_dir(request.out_dir, pass) + "/" + k.label(),
+                   pass_case_sets(plan, pass, c, &summaries), false, request.no_vtk};
+    const auto scene = load_scene(plan.scene_file, run.sets);
+    nlohmann::json earlier = request.resume ? completed_before(run.out_dir, *scene) : nullptr;
+    if (!earlier.is_null()) {
+      std::fprintf(stderr, "cosim study: %scase %d/%d '%s' completed before (%s/summary.json): kept\n", prefix.c_str(),
+                   c + 1, n, k.label().c_str(), run.out_dir.c_str());
+      summaries[c] = std::move(earlier);
+    } else {
+      std::fprintf(stderr, "cosim study: %scase %d/%d '%s'\n", prefix.c_str(), c + 1, n, k.label().c_str());
+      make_folder(pass_dir(request.out_dir, pass));
+      const int code = run_scene_processes(run);
+      if (code != 0) throw Error("study case '" + k.label() + "' failed (exit code " + std::to_string(code) + ")");
+      summaries[c] = nlohmann::json::parse(read_file(run.out_dir + "/summary.json"));
+    }
+    // A case of another kind (a tyre on the road in a study on snow) may lack it: its row leaves it empty.
+    if (!result_at(summaries[c]["results"], s.result_field()))
+      std::fprintf(stderr, "cosim study: %scase '%s' has no result '%s' (result_field): its row leaves it empty\n",
+                   prefix.c_str(), k.label().c_str(), s.result_field().c_str());
+  }
+}
+
+}  // namespace
+
+std::vector<scene::StudyCase> expand_cases(const scene::Study& s) {
+  std::vector<scene::StudyCase> cases(s.cases().begin(), s.cases().end());
+  for (const auto& grid : s.grids()) {
+    // Odometer over the axes' values, the last axis fastest.
+    std::vector<int> at(grid.axes_size(), 0);
+    bool empty = grid.axes_size() == 0;
+    for (const auto& axis : grid.axes()) empty = empty || axis.values_size() == 0;
+    while (!empty) {
+      scene::StudyCase k;
+      std::string label;
+      for (const auto& set : grid.set()) k.add_set(set);
+      for (const auto& p : grid.parameter()) k.add_parameter(p);
+      for (int a = 0; a < grid.axes_size(); ++a) {
+        const auto& value = grid.axes(a).values(at[a]);
+        label += (label.empty() ? "" : "_") + (value.label().empty() ? value.value() : value.label());
+        for (const auto& set : value.set()) k.add_set(set);
+        k.add_parameter(grid.axes(a).column() + "=" + value.value());
+      }
+      k.set_label(label);
+      cases.push_back(std::move(k));
+      int a = grid.axes_size() - 1;
+      while (a >= 0 && ++at[a] == grid.axes(a).values_size()) at[a--] = 0;
+      if (a < 0) break;
+    }
+  }
+  return cases;
+}
+
+int run_study(const StudyRequest& request) {
+  const auto study = load_study(request.study_file);
+  const auto& s = study->message;
+  StudyPlan plan{s, expand_cases(s), request.study_file, folder_of(request.study_file) + "/" + s.scene()};
+  validate_study(s, plan.cases, study->locator(), request.pass);
+  make_folder(request.out_dir);
+  plan.coupled = load_scene(plan.scene_file, {})->message.has_coupling();
+  // Validate every case of every pass before running any.
+  for (const auto& pass : passes_of(s))
+    for (std::size_t c = 0; c < plan.cases.size(); ++c)
+      check_scene(*load_scene(plan.scene_file, pass_case_sets(plan, pass, static_cast<int>(c), nullptr)));
+  StudyOutputs outputs{s, request.study_file, plan.scene_file, request.out_dir,
+                       static_cast<int>(plan.cases.size() * passes_of(s).size())};
+  try {
+    for (const auto& pass : passes_of(s))
+      if (request.pass.empty() || pass.name() == request.pass) run_pass(plan, pass, request);
+  } catch (const Error&) {
+    // Nothing completed is lost: what finished is written, and --resume runs the rest.
+    const auto rows = gather(plan, request.out_dir);
+    if (!rows.empty()) {
+      write_study_outputs(outputs, rows);
+      std::fprintf(stderr, "cosim study: wrote the %zu completed run(s) to %s/table.csv; `--resume` runs the rest\n",
+                   rows.size(), request.out_dir.c_str());
     }
     throw;
   }
-  tabulate(s, out_dir, scene_file, summaries);
-  std::fprintf(stderr, "cosim study: wrote %s/table.csv and %s/error_vs_runtime.png\n", out_dir.c_str(), out_dir.c_str());
+  write_study_outputs(outputs, gather(plan, request.out_dir));
+  std::fprintf(stderr, "cosim study: wrote %s/table.csv and %s/report.html\n", request.out_dir.c_str(),
+               request.out_dir.c_str());
   return 0;
 }
 

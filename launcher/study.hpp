@@ -30,11 +30,25 @@ struct RunRequest {
 // Starts the participants of the scene and waits; returns the exit code.
 int run_scene_processes(const RunRequest& request);
 
-// Runs every case of a study and writes DIR/table.csv, DIR/summary.json and
-// DIR/error_vs_runtime.png (gnuplot). If a case fails or the study is stopped,
-// the cases completed so far are tabulated before the error is reported.
-// resume: a case whose DIR/LABEL/summary.json says it completed with the same
-// overrides is taken as it is instead of being run again.
-int run_study(const std::string& study_file, const std::string& out_dir, bool no_vtk, bool resume = false);
+// The study's cases: the explicit ones, then every grid's combinations
+// (labelled by their axis values joined with '_', with the axes' parameters).
+std::vector<scene::StudyCase> expand_cases(const scene::Study& study);
+
+struct StudyRequest {
+  std::string study_file;
+  std::string out_dir;
+  bool no_vtk = false;
+  // A case whose DIR/[PASS/]LABEL/summary.json says it completed with the same
+  // overrides is taken as it is instead of being run again.
+  bool resume = false;
+  std::string pass;  // "": every pass of the study, in order
+};
+// Runs the cases of a study (of one pass or of all) and writes, from every run
+// completed in DIR (so a pass run later joins the earlier one's): table.csv,
+// summary.json, error_vs_runtime.csv/.png, orderings.csv and
+// thesis_comparison.csv when the study has them, its plots and report.html.
+// If a case fails or the study is stopped, what completed is written before the
+// error is reported.
+int run_study(const StudyRequest& request);
 
 }  // namespace cosim

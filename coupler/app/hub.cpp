@@ -13,6 +13,7 @@
 #include "coupler/wire.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/participant.hpp"
+#include "cosim/signal.hpp"
 
 namespace coupler {
 namespace {
@@ -267,6 +268,7 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
     mean.drawbar_pull_N += d.drawbar_pull_N;
     mean.net_longitudinal_pressure_force_N += d.net_longitudinal_pressure_force_N;
     mean.traction_minus_rrf_N += d.traction_minus_rrf_N, mean.sinkage_m += d.sinkage_m;
+    mean.rolling_resistance_moment_Nm += d.rolling_resistance_moment_Nm;
     mean.contact_area_m2 += d.contact_area_m2, mean.vertical_pressure_force_N += d.vertical_pressure_force_N;
     rim_fx += r.rim_longitudinal_force_N, contact_fx += r.contact_force_x_N;
     ++n;
@@ -285,6 +287,7 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
   results["traction_force_N"] = avg(mean.traction_force_N);
   results["motion_resistance_N"] = avg(mean.motion_resistance_N);
   results["groove_force_N"] = avg(mean.groove_force_N);
+  results["rolling_resistance_moment_Nm"] = avg(mean.rolling_resistance_moment_Nm);
   results["rolling_resistance_force_N"] = avg(mean.rolling_resistance_force_N);
   results["drawbar_pull_N"] = avg(mean.drawbar_pull_N);
   // Beside it, what a test rig would measure: the tyre's longitudinal force on
@@ -330,10 +333,50 @@ void CouplerRun::plots(cosim::RunRecord& record) {
   record.plot_map("contact_pressure.csv", "contact_pressure.png", 1, 2, 4,
                   name + ": contact pressure on the tyre (last step, seen from above)", "x [m]", "y [m]",
                   "pressure [Pa]");
-  if (!rows_.empty())
-    record.plot("forces.csv", "forces.png", 1,
-                {{3, "traction F3"}, {4, "motion resistance F1"}, {5, "groove F2"}, {8, "F5"}, {9, "drawbar pull"}},
-                name + ": force decomposition", "time [s]", "force [N]");
+  if (rows_.empty()) return;
+  // The raw per-step forces swing by +-1000 N on a coarse scene as particles
+  // enter and leave contact: a centred moving mean is drawn over them, and the
+  // averaging window of the results is shaded.
+  const double filter_s = scene_.coupling().force_plot_filter_s();
+  std::vector<double> t;
+  std::vector<std::vector<double>> raw(5);
+  for (const auto& r : rows_) {
+    t.push_back(r.t);
+    const double v[5] = {r.d.traction_force_N, r.d.motion_resistance_N, r.d.groove_force_N,
+                         r.d.rolling_resistance_force_N, r.d.drawbar_pull_N};
+    for (int k = 0; k < 5; ++k) raw[k].push_back(v[k]);
+  }
+  std::vector<std::vector<double>> filtered;
+  for (const auto& series : raw) filtered.push_back(cosim::centred_moving_mean(t, series, filter_s));
+  {
+    cosim::CsvWriter out(record.path("forces_filtered.csv"),
+                         {"time_s", "traction_force_N", "motion_resistance_N", "groove_force_N",
+                          "rolling_resistance_force_N", "drawbar_pull_N"});
+    for (std::size_t i = 0; i < t.size(); ++i)
+      out.row({t[i], filtered[0][i], filtered[1][i], filtered[2][i], filtered[3][i], filtered[4][i]});
+  }
+  cosim::PlotOptions o;
+  char filter_ms[32];
+  std::snprintf(filter_ms, sizeof filter_ms, "%g", filter_s * 1e3);
+  o.title = name + ": force decomposition (faint: per step; bold: " + filter_ms + " ms centred mean)";
+  o.x_label = "time [s]", o.y_label = "force [N]";
+  const auto& results = record.results();
+  if (results.contains("averaging_window_start_s"))
+    o.extra_commands = "set object 1 rect from " + std::to_string(results["averaging_window_start_s"].get<double>()) +
+                       ", graph 0 to " + std::to_string(results["averaging_window_end_s"].get<double>()) +
+                       ", graph 1 fc rgb '#eeeeee' fs solid behind noborder\n";
+  // forces.csv columns of F3, F1, F2, F5, drawbar pull; forces_filtered.csv columns 2-6.
+  const int raw_column[5] = {3, 4, 5, 8, 9};
+  const char* names[5] = {"traction F3", "motion resistance F1", "groove F2", "F5", "drawbar pull"};
+  const char* colours[5] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#000000"};
+  std::vector<cosim::PlotCurve> curves;
+  for (int k = 0; k < 5; ++k)
+    curves.push_back({record.path("forces.csv"), "1:" + std::to_string(raw_column[k]),
+                      std::string("lines lw 1 lc rgb '#b0") + (colours[k] + 1) + "'", ""});
+  for (int k = 0; k < 5; ++k)
+    curves.push_back({record.path("forces_filtered.csv"), "1:" + std::to_string(k + 2),
+                      std::string("lines lw 3 lc rgb '") + colours[k] + "'", names[k]});
+  if (cosim::plot_png(record.path("forces.png"), o, curves)) record.summary()["plots"].push_back("forces.png");
 }
 
 }  // namespace

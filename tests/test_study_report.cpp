@@ -1,0 +1,69 @@
+// A study's report.html opened in a real browser (Debian's chromium, headless,
+// as a user opens it from disk, offline): every figure decodes and every table
+// is there. The page marks on <body> how many of its images loaded
+// (data-figures-loaded="k/n", counted by the browser after the load event)
+// and how many tables it holds; the test reads the DOM the browser ends with.
+// Also what the study writes beside it: one table row per run of a case in a
+// pass, the orderings and the checks. Exact expectations: counts and labels.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "test_paths.hpp"
+
+namespace {
+
+using test_support::bin;
+using test_support::shell;
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
+  const auto dir = test_support::scratch("study_report");
+  auto [code, out] = shell("OMP_NUM_THREADS=1 " + bin() + "/cosim study " + test_support::source_dir() +
+                           "/tests/test_study_report.textproto --out " + dir + " --no-vtk");
+  ASSERT_EQ(code, 0) << out;
+  // Four runs (two grid cases in two passes), a pass column and the parameter.
+  const std::string table = read(dir + "/table.csv");
+  EXPECT_EQ(table.rfind("case,pass,end_time_s,", 0), 0u) << table;
+  EXPECT_EQ(count(table, "\n"), 5u) << table;
+  EXPECT_NE(read(dir + "/orderings.csv").find("front_advances,the surge front advances with time,Martin & Moyce 1952,coarse,1 of 1 hold"),
+            std::string::npos);
+  EXPECT_NE(read(dir + "/thesis_comparison.csv").find(",coarse,0.01,0.01,0,1e-09,yes,"), std::string::npos);
+  const std::string errors = read(dir + "/error_vs_runtime.csv");
+  EXPECT_NE(errors.find("5ms,final_front_m,coarse,"), std::string::npos) << errors;
+
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0)
+    GTEST_FAIL() << "chromium is not installed (scripts/setup.sh installs it)";
+  const std::string profile = test_support::scratch("study_report_browser");
+  auto [browser, dom] = shell(
+      "chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking "
+      "--disable-component-update --disable-sync --user-data-dir=" + profile +
+      " --virtual-time-budget=10000 --dump-dom file://" + dir + "/report.html 2>/dev/null");
+  ASSERT_EQ(browser, 0) << dom;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-figures-loaded=\"(\\d+)/(\\d+)\""))) << dom.substr(0, 2000);
+  // Per pass: front.png; and the passes' error plot: three figures.
+  EXPECT_EQ(m[2], "3") << dom.substr(0, 2000);
+  EXPECT_EQ(m[1], m[2]) << "figures that did not load";
+  ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-tables=\"(\\d+)\"")));
+  std::smatch expected;
+  ASSERT_TRUE(std::regex_search(dom, expected, std::regex("data-tables-expected=\"(\\d+)\"")));
+  EXPECT_EQ(m[1], expected[1]);
+  EXPECT_EQ(expected[1], "4");  // table, error against run time, thesis comparison, orderings
+}
+
+}  // namespace
