@@ -53,7 +53,7 @@ body{font-family:sans-serif;max-width:1200px;margin:1em auto;padding:0 1em;color
 h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #ccc;margin-top:1.6em}
 table.data{border-collapse:collapse;font-size:0.85em}table.data td,table.data th{border:1px solid #ccc;padding:2px 6px;text-align:left;vertical-align:top}
 table.data th{background:#f0f0f0}td.ok{background:#d8f0d8}td.bad{background:#f6d6d6}
-.scroll{overflow-x:auto;max-height:40em}figure{display:inline-block;margin:0.5em;vertical-align:top}
+.scroll{overflow-x:auto;max-height:40em}figure{display:inline-block;width:47%;margin:0.5em;vertical-align:top}
 figure img{max-width:100%;border:1px solid #ddd}figcaption,.file{font-size:0.8em;color:#666}
 code{background:#f4f4f4;padding:0 3px}
 </style>
@@ -115,11 +115,11 @@ void write_study_html(const StudyOutputs& o, const std::vector<StudyRow>& rows, 
   // Each coupled run's force curves (the coupler's forces.png: faint per-step signal, bold moving mean).
   bool any = false;
   for (const auto& r : rows) {
-    const std::string png = (r.pass.empty() ? "" : r.pass + "/") + r.label + "/forces.png";
+    const std::string png = (r.pass.empty() ? "" : r.pass + "/") + r.label + "/coupler/forces.png";
     if (!std::filesystem::exists(o.out_dir + "/" + png)) continue;
     if (!any) html << "<h2>Force curves of every run</h2>\n<p>The shaded band is the averaging window of the "
                       "run's results.</p>\n", any = true;
-    html << "<figure><img src=\"" << esc(png) << "\" alt=\"" << esc(png) << "\" width=\"560\"><figcaption>"
+    html << "<figure><img src=\"" << esc(png) << "\" alt=\"" << esc(png) << "\"><figcaption>"
          << esc(png) << "</figcaption></figure>\n";
   }
   html << kCheckScript << "</body></html>\n";

@@ -333,3 +333,39 @@ TEST(CoupledRun, TreadBlockLeavesARutWithoutPenetrationAndBalancesMomentum) {
   EXPECT_LT(results["decomposition_residual_relative"].get<double>(), 1e-9);  // rib edges: as in the torque run
   expect_momentum_balance_of(run, 0.01);
 }
+
+// The tyre's rigid road under the terrain (coupling.rigid_road_under_terrain):
+// the coarse indentation's tyre loaded onto a road under 2 cm of water (10 mm
+// particles, 0.4 x 0.4 m; sound speed lowered to 50 m/s so that the suite can
+// afford it: at rest the water's stiffness does not enter the balance). At rest
+// still water can carry no more than its buoyancy on the tyre, rho g V with V at
+// most the layer's depth times the plan area the tyre covers (0.02 m x 0.25 m x
+// 0.3 m: 15 N), so the road carries the load. Bounds: the loading ends after
+// 0.08 s of damped relaxation, not at rest: the rim's balance (road + water =
+// load) is checked to 2 % (the loading stage's own rest tolerance), the water's
+// share below 2 % of the load (about ten times its buoyancy, for the squeeze flow
+// still under way). The exchange balances momentum as on snow.
+TEST(CoupledRun, ARoadUnderTheWaterCarriesTheTyre) {
+  const auto dir = test_support::scratch("road_under_water");
+  auto [code, out] = shell(
+      bin() + "/cosim run " + kIndentation + " --out " + dir +
+      " --dds cyclone --domain 15 --no-vtk --quiet --set coupling.terrain=../materials/water.textproto"
+      " --set coupling.rigid_road_under_terrain=true --set sph.particle_spacing_m=0.01"
+      " --set sph.container.min.x=-0.2 --set sph.container.max.x=0.2 --set sph.container.min.y=-0.2"
+      " --set sph.container.max.y=0.2 --set sph.container.min.z=-0.02 --set sph.blocks[0].region.min.x=-0.2"
+      " --set sph.blocks[0].region.max.x=0.2 --set sph.blocks[0].region.min.y=-0.2 --set sph.blocks[0].region.max.y=0.2"
+      " --set sph.blocks[0].region.min.z=-0.02 --set sph.blocks[0].material.material_file=../materials/water.textproto"
+      " --set sph.blocks[0].material.water.sound_speed_override_m_per_s=50"
+      " --set tyre.stages.loading_s=0.08 --set tyre.stages.loading_rest_tolerance=0");
+  ASSERT_EQ(code, 0) << out;
+  const SceneRun run = read_run(dir);
+  const auto& tyre = run.tyre["results"];
+  const double load = 4000.0;
+  const double road = tyre["road_vertical_force_N"].get<double>(), water = tyre["terrain_vertical_force_N"].get<double>();
+  EXPECT_NEAR(road + water, load, 0.02 * load) << "road " << road << " N, water " << water << " N";
+  EXPECT_LT(std::fabs(water), 0.02 * load) << "water " << water << " N";
+  EXPECT_GT(tyre["road_contact_area_m2"].get<double>(), 0.0);
+  EXPECT_EQ(tyre["ground_vertical_force_N"].get<double>(), road + water);
+  EXPECT_GT(lines_of(dir + "/tyre/road.csv").size(), 10u);
+  expect_momentum_balance_of(run, 0.0);
+}

@@ -33,9 +33,19 @@ std::size_t count(const std::string& text, const std::string& what) {
 
 TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
   const auto dir = test_support::scratch("study_report");
-  auto [code, out] = shell("OMP_NUM_THREADS=1 " + bin() + "/cosim study " + test_support::source_dir() +
-                           "/tests/test_study_report.textproto --out " + dir + " --no-vtk");
+  const std::string study = "OMP_NUM_THREADS=1 " + bin() + "/cosim study " + test_support::source_dir() +
+                            "/tests/test_study_report.textproto --out " + dir + " --no-vtk";
+  // One pass, then the other: the tables join what completed in DIR.
+  auto [code, out] = shell(study + " --pass coarse");
   ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(count(read(dir + "/table.csv"), "\n"), 3u) << "header and the coarse pass's two runs";
+  EXPECT_NE(read(dir + "/error_vs_runtime.csv").find(",fine (not run),"), std::string::npos);
+  std::tie(code, out) = shell(study + " --pass fine");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(out.find("pass 'coarse'"), std::string::npos) << "--pass fine ran the coarse pass: " << out;
+  std::tie(code, out) = shell(study + " --pass medium");
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("--pass medium: the study's passes are coarse fine"), std::string::npos) << out;
   // Four runs (two grid cases in two passes), a pass column and the parameter.
   const std::string table = read(dir + "/table.csv");
   EXPECT_EQ(table.rfind("case,pass,end_time_s,", 0), 0u) << table;

@@ -300,6 +300,26 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
   results["vertical_pressure_force_N"] = avg(mean.vertical_pressure_force_N);
   results["sinkage_m"] = avg(mean.sinkage_m);
   results["contact_area_m2"] = avg(mean.contact_area_m2);
+  // How steady the window is: each mean over its second half less that over its
+  // first half (a steady state gives the noise only; a transient, a trend).
+  if (n >= 2) {
+    const double mid = 0.5 * ((window > 0 ? from : rows_.front().t) + rows_.back().t);
+    double first[6] = {0}, second[6] = {0};
+    long n1 = 0, n2 = 0;
+    for (const auto& r : rows_) {
+      if (window > 0 && r.t < from) continue;
+      const double v[6] = {r.d.traction_force_N, r.d.motion_resistance_N, r.d.groove_force_N,
+                           r.d.rolling_resistance_force_N, r.d.drawbar_pull_N, r.d.sinkage_m};
+      double* half = r.t < mid ? first : second;
+      for (int k = 0; k < 6; ++k) half[k] += v[k];
+      ++(r.t < mid ? n1 : n2);
+    }
+    const char* names[6] = {"traction_force_N", "motion_resistance_N", "groove_force_N", "rolling_resistance_force_N",
+                            "drawbar_pull_N", "sinkage_m"};
+    nlohmann::json drift;
+    for (int k = 0; k < 6; ++k) drift[names[k]] = n1 && n2 ? second[k] / n2 - first[k] / n1 : 0.0;
+    results["window_drift"] = drift;
+  }
   results["decomposition_residual_max_N"] = largest_residual_N_;
   results["decomposition_residual_relative"] = largest_force_N_ > 0 ? largest_residual_N_ / largest_force_N_ : 0.0;
   if (!rows_.empty()) {
@@ -364,7 +384,7 @@ void CouplerRun::plots(cosim::RunRecord& record) {
   if (results.contains("averaging_window_start_s"))
     o.extra_commands = "set object 1 rect from " + std::to_string(results["averaging_window_start_s"].get<double>()) +
                        ", graph 0 to " + std::to_string(results["averaging_window_end_s"].get<double>()) +
-                       ", graph 1 fc rgb '#eeeeee' fs solid behind noborder\n";
+                       ", graph 1 behind fc rgb '#eeeeee' fs solid noborder\n";
   // forces.csv columns of F3, F1, F2, F5, drawbar pull; forces_filtered.csv columns 2-6.
   const int raw_column[5] = {3, 4, 5, 8, 9};
   const char* names[5] = {"traction F3", "motion resistance F1", "groove F2", "F5", "drawbar pull"};

@@ -50,6 +50,14 @@ void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::Validation
     r.fail(loaded.locator().child("sph").child("blocks", 0).child("region").child("max").where("z"),
            "the terrain surface of a coupled scene is the plane z = 0: the highest block must end at z = 0 (got " +
                num(top) + ")");
+  if (c.rigid_road_under_terrain()) {
+    if (!scene.has_tyre())
+      r.fail(loc.where("rigid_road_under_terrain"), "the road under the terrain is the tyre's: the scene needs a `tyre`");
+    if (!(scene.sph().container().min().z() < 0.0))
+      r.fail(loc.where("rigid_road_under_terrain"),
+             "the road lies at the terrain's floor (sph.container.min.z), which must be below its surface z = 0 (got " +
+                 num(scene.sph().container().min().z()) + ")");
+  }
   if (scene.has_tyre() && scene.tyre().stages().loading_s() <= 0)
     r.fail(loaded.locator().child("tyre").child("stages").where("loading_s"),
            "a coupled run loads the tyre onto the terrain: give loading_s > 0");

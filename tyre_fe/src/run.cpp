@@ -90,8 +90,11 @@ class TyreRun final : public cosim::Participant {
   double ground_fy() const { return s_.road.force_y_N + s_.terrain.load_totals.force_N[1]; }
   double ground_fz() const { return s_.road.force_z_N + s_.terrain.load_totals.force_N[2]; }
   // What the tyre stands on, for the names of its forces: the terrain of a
-  // coupled run, else the rigid road.
-  std::string ground(const char* quantity) const { return std::string(port_ ? "terrain_" : "road_") + quantity; }
+  // coupled run, the rigid road, or both ("ground_": a road under the terrain).
+  bool road_under_terrain() const { return port_ && scene_.coupling().rigid_road_under_terrain(); }
+  std::string ground(const char* quantity) const {
+    return std::string(road_under_terrain() ? "ground_" : port_ ? "terrain_" : "road_") + quantity;
+  }
   double ground_area() const { return s_.road.contact_area_m2 + s_.terrain.load_totals.contact_area_m2; }
 
   const cosim::LoadedScene& loaded_;
@@ -104,6 +107,7 @@ class TyreRun final : public cosim::Participant {
   State3d s_;
   std::unique_ptr<FrameWriter> frames_;
   cosim::CsvWriter* csv_ = nullptr;
+  cosim::CsvWriter* road_csv_ = nullptr;  // a road under the terrain only
   bool stepping_ = false, failed_ = false, at_max_steps_ = false, joined_ = false;
   double next_csv_ = 0.0, csv_interval_ = 0.0;
   std::uint64_t max_steps_ = 0;
@@ -124,6 +128,7 @@ class TyreRun final : public cosim::Participant {
   // Rolling: the averaging window's sums.
   double spin_up_radius_ = 0.0, t_window_ = 0.0, average_window_ = 0.0;
   double x_w_ = 0, a_w_ = 0, fx_sum_ = 0, rim_fx_sum_ = 0, m_sum_ = 0, fz_sum_ = 0, h_sum_ = 0, w_sum_ = 0;
+  double road_fz_sum_ = 0, road_area_sum_ = 0;  // a road under the terrain
   long n_w_ = 0;
   bool in_window_ = false;
   // Coupled run.
@@ -218,6 +223,10 @@ double TyreRun::initialize(cosim::RunRecord& record) {
                                      "rim_longitudinal_force_N", "contact_area_m2",
                                      "kinetic_J", "internal_J", "hourglass_J", "external_work_J",
                                      "energy_balance_error", "crown_radial_growth_m"});
+  // A road under the terrain: the road's force and area apart, and the terrain's lift.
+  if (road_under_terrain())
+    road_csv_ = &record.series("road.csv", {"time_s", "road_force_x_N", "road_force_z_N", "road_contact_area_m2",
+                                            "terrain_force_x_N", "terrain_force_z_N", "rim_vx_m_per_s"});
   csv_interval_ = scene_.output().csv_interval_s();
   max_steps_ = scene_.time().max_steps();
   frames_ = std::make_unique<FrameWriter>(out, options_.write_vtk ? scene_.output().vtk_interval_s() : 0.0);
@@ -263,6 +272,9 @@ void TyreRun::output(cosim::RunRecord&) {
                ground_area(),
                s_.energy.kinetic_J, s_.energy.internal_J, s_.energy.hourglass_J, s_.energy.external_work_J,
                s_.energy.balance_error(), mean_radius_of(model_->mesh, s_, centre_) - r0_});
+    if (road_csv_)
+      road_csv_->row({s_.time_s, s_.road.force_x_N, s_.road.force_z_N, s_.road.contact_area_m2,
+                      s_.terrain.load_totals.force_N[0], s_.terrain.load_totals.force_N[2], s_.rim.vx});
     next_csv_ = s_.time_s + csv_interval_;
   }
   frames_->maybe_write(*model_, s_);
@@ -318,6 +330,13 @@ void TyreRun::join_terrain() {
   for (double& z : s_.z) z += lift;
   s_.rim.z += lift;
   s_.road.height_m = 0.0;  // heights below are measured from the terrain surface
+  if (c.rigid_road_under_terrain()) {
+    // The road at the terrain's floor; heights are then measured from the road.
+    s_.road.present = true;
+    s_.road.height_m = scene_.sph().container().min().z();
+    s_.road.friction_coefficient = t_.road().friction_coefficient();
+    s_.road.penalty_scale = t_.road().penalty_scale() > 0.0 ? t_.road().penalty_scale() : 0.1;
+  }
   s_.terrain.surface = make_contact_surface(model, s_);
   s_.terrain.band_m = c.contact_band_m();
   if (!options_.quiet)
@@ -405,6 +424,7 @@ bool TyreRun::each_step() {
       if (!in_window_) x_w_ = s_.rim.x, a_w_ = s_.rim.angle, in_window_ = true;
       fx_sum_ += ground_fx(), m_sum_ += s_.rim.rm2_Nm, fz_sum_ += ground_fz(), ++n_w_;
       rim_fx_sum_ += s_.rim.tyre_force_x_N;
+      road_fz_sum_ += s_.road.force_z_N, road_area_sum_ += s_.road.contact_area_m2;
       h_sum_ += s_.rim.z - s_.road.height_m, w_sum_ += s_.rim.omega;
       return false;
     case kDone:
@@ -448,6 +468,11 @@ void TyreRun::end_stage() {
       results["contact_area_m2"] = ground_area();
       results["rim_vertical_force_N"] = s_.rim.tyre_force_z_N;  // the tyre holding the rim up
       results[ground("vertical_force_N")] = ground_fz();
+      if (road_under_terrain()) {  // the road's share and the terrain's lift
+        results["road_vertical_force_N"] = s_.road.force_z_N;
+        results["road_contact_area_m2"] = s_.road.contact_area_m2;
+        results["terrain_vertical_force_N"] = s_.terrain.load_totals.force_N[2];
+      }
       results["wheel_load_N"] = load_;
       // The rim's drop below where the undeformed tyre would touch the undisturbed
       // terrain surface z = 0: the sinkage less the tyre's deflection. The sinkage
@@ -470,6 +495,11 @@ void TyreRun::end_stage() {
       results["rm2_Nm"] = n ? m_sum_ / n : 0.0;
       results[ground("longitudinal_force_N")] = n ? fx_sum_ / n : 0.0;
       results[ground("vertical_force_rolling_N")] = n ? fz_sum_ / n : 0.0;
+      if (road_under_terrain()) {
+        results["road_vertical_force_rolling_N"] = n ? road_fz_sum_ / n : 0.0;
+        results["road_contact_area_rolling_m2"] = n ? road_area_sum_ / n : 0.0;
+        results["terrain_vertical_force_rolling_N"] = n ? (fz_sum_ - road_fz_sum_) / n : 0.0;
+      }
       // The tyre's force on the rim along x (forward positive), which holds the
       // rim's prescribed forward speed: at a steady state the ground's longitudinal
       // force on the tyre (docs/force_decomposition.md, "Drawbar pull").
