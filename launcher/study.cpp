@@ -251,8 +251,12 @@ void gather_pass(const StudyPlan& plan, const scene::StudyPass& pass, const std:
       row.parameters[p.substr(0, eq)] = p.substr(eq + 1);
     }
     for (const auto& f : s.extra_result_fields())  // named columns: COLUMN=PATH
-      if (const auto eq = f.find('='); eq != std::string::npos)
-        row.computed[f.substr(0, eq)] = row_number(row, f.substr(eq + 1));
+      if (const auto eq = f.find('='); eq != std::string::npos) {
+        // A run without the result leaves the column to a result of that name, if any
+        // (a tyre on the road has its spin_rate_rad_per_s at the top, not under "tyre").
+        const double v = row_number(row, f.substr(eq + 1));
+        if (!std::isnan(v)) row.computed[f.substr(0, eq)] = v;
+      }
     rows.push_back(std::move(row));
   }
   if (s.slip_radius_case().empty()) return;

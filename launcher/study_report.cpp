@@ -256,7 +256,7 @@ std::string draw_plot(const StudyOutputs& o, const scene::StudyPlot& plot, const
 
 CheckOutcome evaluate_check(const scene::StudyCheck& c, const std::vector<StudyRow>& rows) {
   CheckOutcome out;
-  out.ours = kNaN;
+  out.ours = out.difference = kNaN;
   out.agrees = "not run";
   if (c.kind() == scene::StudyCheck::CASE_RESULT) {
     for (const auto& r : rows)
@@ -295,6 +295,13 @@ CheckOutcome evaluate_check(const scene::StudyCheck& c, const std::vector<StudyR
         if (max ? y > b : y < b) best = r;
       }
       out.ours = row_number(*best, c.x());
+      if (best == curve.front() || best == curve.back()) {
+        // At the end of the runs' range the curve may go on rising (falling): no extreme was found.
+        out.difference = out.ours - c.value();
+        out.agrees = "no";
+        out.how += ": at the end of the range run, no extreme inside it";
+        return out;
+      }
     }
     out.difference = out.ours - c.value();
   }

@@ -22,7 +22,7 @@ void write_study_outputs(const StudyOutputs& outputs, const std::vector<StudyRow
 // One check of the study against a thesis number, evaluated on one pass's rows.
 struct CheckOutcome {
   double ours = 0.0;      // NaN when the runs cannot tell
-  double difference = 0;  // relative (case results) or in x (curve features)
+  double difference = 0;  // relative (case results) or in x (curve features); NaN when not run
   std::string agrees;     // "yes", "no" or "not run"
   std::string how;        // what was compared, for the report
 };

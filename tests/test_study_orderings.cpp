@@ -135,6 +135,10 @@ TEST(StudyChecks, CaseResultZeroCrossingAndExtremes) {
   r = cosim::evaluate_check(c, rows);
   EXPECT_EQ(r.ours, 0.8);  // the towed run is filtered out
   EXPECT_EQ(r.agrees, "no");
+  // Without the 0.9 run the largest is the last run's: no maximum inside the range.
+  r = cosim::evaluate_check(c, {rows[0], rows[1]});
+  EXPECT_EQ(r.ours, 0.8);
+  EXPECT_EQ(r.agrees, "no");
   c.set_kind(cosim::scene::StudyCheck::CASE_RESULT), c.set_case_label("towed"), c.set_result("rm2");
   c.set_value(45.0), c.set_tolerance(0.25);
   r = cosim::evaluate_check(c, rows);
