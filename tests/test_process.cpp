@@ -1,11 +1,13 @@
 // The shared process spawner (common/include/cosim/process.hpp) against what
 // the shell is known to do: exit codes, output redirection, signals, a time-out.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
-#include <csignal>
 #include <chrono>
+#include <csignal>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "cosim/error.hpp"
 #include "cosim/process.hpp"
@@ -68,6 +70,34 @@ TEST(Process, MissingProgramIsAnError) {
 
 TEST(Process, RunChildWaitsForTheExitCode) {
   EXPECT_EQ(cosim::run_child("/bin/sh", {"-c", "exit 7"}), 7);
+}
+
+// A SIGTERM to the parent alone (a scheduler's, `kill PID`) reaches the child,
+// which stops as it chooses (here: exit 7 from its trap) and is waited for; the
+// parent lives on. The child would otherwise sleep 20 s: the test's time bound
+// is that the signal arrived, not a tuning.
+TEST(Process, ASignalToTheParentIsPassedToTheChild) {
+  std::thread signaller([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    kill(getpid(), SIGTERM);
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const int code = cosim::run_child("/bin/sh", {"-c", "trap 'kill $!; exit 7' TERM; sleep 20 & wait"});
+  signaller.join();
+  EXPECT_EQ(code, 7);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  // Several children: each gets it.
+  std::thread again([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    kill(getpid(), SIGTERM);
+  });
+  const auto results = cosim::run_children({{"a", "/bin/sh", {"-c", "trap 'kill $!; exit 3' TERM; sleep 20 & wait"}},
+                                            {"b", "/bin/sh", {"-c", "trap 'kill $!; exit 4' TERM; sleep 20 & wait"}}},
+                                           10.0);
+  again.join();
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_EQ(results[0].exit_code, 3);
+  EXPECT_EQ(results[1].exit_code, 4);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "cosim/process.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -25,23 +26,39 @@ int exit_code_of(int status) {
   return 1;
 }
 
-// While children run, Ctrl-C and SIGTERM reach them too (same process group)
-// and they stop cleanly; the parent ignores both and waits for them to report
-// instead of dying first. Restores the old handlers when it goes.
-class IgnoreInterrupts {
+// The signal forwarded to the children: 0 until one arrives. A handler may
+// touch nothing else.
+std::atomic<int> g_forward{0};
+extern "C" void remember_signal(int signal) { g_forward.store(signal); }
+
+// While children run, Ctrl-C (which reaches the whole process group) and a
+// SIGINT or SIGTERM sent to the parent alone (a scheduler, `kill PID`) both stop
+// them cleanly: the parent does not die first but passes the signal on to the
+// children it started, once, and waits for them to report. Restores the old
+// handlers when it goes.
+class ForwardInterrupts {
  public:
-  IgnoreInterrupts() {
-    struct sigaction ignore {};
-    ignore.sa_handler = SIG_IGN;
-    sigaction(SIGINT, &ignore, &old_int_);
-    sigaction(SIGTERM, &ignore, &old_term_);
+  ForwardInterrupts() {
+    g_forward.store(0);
+    struct sigaction forward {};
+    forward.sa_handler = remember_signal;
+    sigemptyset(&forward.sa_mask);
+    sigaction(SIGINT, &forward, &old_int_);
+    sigaction(SIGTERM, &forward, &old_term_);
   }
-  ~IgnoreInterrupts() {
+  ~ForwardInterrupts() {
     sigaction(SIGINT, &old_int_, nullptr);
     sigaction(SIGTERM, &old_term_, nullptr);
   }
-  IgnoreInterrupts(const IgnoreInterrupts&) = delete;
-  IgnoreInterrupts& operator=(const IgnoreInterrupts&) = delete;
+  ForwardInterrupts(const ForwardInterrupts&) = delete;
+  ForwardInterrupts& operator=(const ForwardInterrupts&) = delete;
+  // Sends a signal that arrived since the last call to these children (pid > 0).
+  void forward_to(const std::vector<pid_t>& pids) {
+    const int signal = g_forward.exchange(0);
+    if (signal == 0) return;
+    for (pid_t pid : pids)
+      if (pid > 0) kill(pid, signal);
+  }
 
  private:
   struct sigaction old_int_ {}, old_term_ {};
@@ -107,8 +124,15 @@ int wait_child_for(pid_t pid, double timeout_s) {
 
 int run_child(const std::string& program, const std::vector<std::string>& args) {
   const pid_t pid = start_child(program, args);
-  const IgnoreInterrupts ignore;
-  return wait_child(pid);
+  ForwardInterrupts forward;
+  int status = 0;
+  while (true) {  // polled: the signal may be taken by any thread of this process
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) return exit_code_of(status);
+    if (r < 0 && errno != EINTR) throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
+    forward.forward_to({pid});
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, double grace_s) {
@@ -116,7 +140,7 @@ std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, do
   const auto start = Clock::now();
   std::vector<pid_t> pids(children.size(), -1);
   std::vector<ChildResult> results(children.size());
-  const IgnoreInterrupts ignore;
+  ForwardInterrupts forward;
   std::size_t running = 0;
   for (std::size_t c = 0; c < children.size(); ++c) {
     results[c].name = children[c].name;
@@ -146,6 +170,7 @@ std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, do
       continue;
     }
     if (pid < 0 && errno != EINTR) break;
+    forward.forward_to(pids);
     if (failed && std::chrono::duration<double>(Clock::now() - failed_at).count() > grace_s) {
       for (std::size_t c = 0; c < children.size(); ++c)
         if (pids[c] > 0) kill(pids[c], SIGTERM), results[c].terminated_by_us = true;

@@ -32,7 +32,10 @@ int wait_child(pid_t pid);
 int wait_child_for(pid_t pid, double timeout_s);
 
 // Runs `program` with `args`, waits, and returns its exit code (128 + signal
-// if it was killed). Throws cosim::Error if it cannot be started.
+// if it was killed). Throws cosim::Error if it cannot be started. While it
+// waits (here and in run_children), a SIGINT or SIGTERM to this process is
+// passed on to the children, which stop cleanly and report, instead of
+// killing this process first.
 int run_child(const std::string& program, const std::vector<std::string>& args);
 
 // Several programs run together (the processes of a coupled run). They are
