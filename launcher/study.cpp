@@ -276,6 +276,7 @@ void gather_pass(const StudyPlan& plan, const scene::StudyPass& pass, const std:
 std::vector<StudyRow> gather(const StudyPlan& plan, const std::string& out_dir) {
   std::vector<StudyRow> rows;
   for (const auto& pass : passes_of(plan.study)) gather_pass(plan, pass, out_dir, rows);
+  if (plan.study.has_f5_radius()) apply_f5_radius(plan.study.f5_radius(), rows);
   return rows;
 }
 

@@ -114,7 +114,9 @@ void write_table(const StudyOutputs& o, const std::vector<StudyRow>& rows, const
           << num(reference != 0 && !std::isnan(reference) ? (value - reference) / reference : kNaN);
     for (const auto& f : s.extra_result_fields()) {
       const nlohmann::json* v = summary.contains("results") ? result_at(summary["results"], f) : nullptr;
-      table << "," << (f.find('=') != std::string::npos ? num(row_number(r, column_of(f))) : v ? json_num(*v) : "");
+      // A named column, or a result the study recomputed (Study.f5_radius), is the row's number.
+      const bool computed = f.find('=') != std::string::npos || r.computed.count(f);
+      table << "," << (computed ? num(row_number(r, column_of(f))) : v ? json_num(*v) : "");
     }
     table << "\n";
   }

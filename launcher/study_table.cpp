@@ -203,4 +203,36 @@ OrderingOutcome evaluate_ordering(const Ordering& o, const std::vector<StudyRow>
   return result;
 }
 
+void apply_f5_radius(const scene::StudyF5Radius& f, std::vector<StudyRow>& rows) {
+  auto radius_of = [](const StudyRow& r) {
+    const double v = row_number(r, "tyre.rolling_radius_m");
+    return std::isnan(v) ? row_number(r, "rolling_radius_m") : v;
+  };
+  for (auto& row : rows) {
+    const StudyRow* reference = nullptr;
+    for (const auto& other : rows) {
+      if (other.pass != row.pass) continue;
+      if (!f.case_label().empty()) {
+        if (other.label == f.case_label()) reference = &other;
+        continue;
+      }
+      if (row_text(other, f.column()) != f.value()) continue;
+      bool same = true;
+      for (const auto& [name, value] : row.parameters)
+        if (name != f.column()) same = same && other.parameters.count(name) && other.parameters.at(name) == value;
+      if (same) reference = &other;
+    }
+    const double rrm = row_number(row, "rolling_resistance_moment_Nm");
+    const double f5 = row_number(row, "rolling_resistance_force_N");
+    if (!reference || std::isnan(rrm) || std::isnan(f5)) continue;
+    const double r = radius_of(*reference);
+    if (!(r > 0.0)) continue;
+    const double f5_new = rrm / r;
+    row.computed["rolling_radius_for_F5_m"] = r;
+    row.computed["rolling_resistance_force_N"] = f5_new;
+    row.computed["drawbar_pull_N"] = row_number(row, "drawbar_pull_N") + f5 - f5_new;
+    row.computed["traction_minus_rrf_N"] = row_number(row, "traction_force_N") - f5_new;
+  }
+}
+
 }  // namespace cosim

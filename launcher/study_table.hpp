@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/scene_io.hpp"
+
 namespace cosim {
 
 struct StudyRow {
@@ -54,5 +56,13 @@ struct OrderingOutcome {
 // Evaluates an ordering over `rows` of one pass; groups are rows equal in every
 // parameter column but the ordering's own.
 OrderingOutcome evaluate_ordering(const Ordering& ordering, const std::vector<StudyRow>& rows);
+
+// F5, the drawbar pull and F3 - F5 of each row recomputed with the r its
+// reference run measured (Study.f5_radius; scene.proto says which run): F5 =
+// RRM / r is linear in 1 / r, and so is its mean over a window of constant r,
+// so the recomputation from the run's RRM and F5 is exact. Sets the computed
+// columns rolling_radius_for_F5_m, rolling_resistance_force_N, drawbar_pull_N
+// and traction_minus_rrf_N; rows without a reference run keep their own.
+void apply_f5_radius(const scene::StudyF5Radius& f5_radius, std::vector<StudyRow>& rows);
 
 }  // namespace cosim

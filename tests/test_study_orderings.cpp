@@ -148,4 +148,35 @@ TEST(StudyChecks, CaseResultZeroCrossingAndExtremes) {
   EXPECT_EQ(cosim::evaluate_check(c, rows).agrees, "not run");
 }
 
+// F5 = RRM / r with the reference run's measured radius: a run whose coupler
+// used r = 0.36 m (RRM 90 N m: F5 = 250 N) recomputed with the free-rolling
+// run's 0.4 m gives F5 = 225 N, so its drawbar pull rises by 25 N and F3 - F5
+// is F3 - 225. Hand arithmetic, exact to rounding (1e-12).
+TEST(StudyF5Radius, RecomputesTheForcesWithTheReferenceRunsRadius) {
+  auto driven = [](const std::string& tread, const std::string& torque, double r) {
+    return run(tread + torque, {{"tread", tread}, {"torque_Nm", torque}},
+               {{"rolling_resistance_moment_Nm", 90.0}, {"rolling_resistance_force_N", 250.0},
+                {"traction_force_N", 400.0}, {"drawbar_pull_N", -100.0}, {"tyre", {{"rolling_radius_m", r}}}});
+  };
+  std::vector<StudyRow> rows{driven("smooth", "0", 0.4), driven("smooth", "600", 0.2), driven("block", "600", 0.3)};
+  cosim::scene::StudyF5Radius f;
+  f.set_column("torque_Nm"), f.set_value("0");
+  cosim::apply_f5_radius(f, rows);
+  for (int i : {0, 1}) {
+    EXPECT_NEAR(cosim::row_number(rows[i], "rolling_radius_for_F5_m"), 0.4, 1e-15);
+    EXPECT_NEAR(cosim::row_number(rows[i], "rolling_resistance_force_N"), 225.0, 1e-12);
+    EXPECT_NEAR(cosim::row_number(rows[i], "drawbar_pull_N"), -75.0, 1e-12);
+    EXPECT_NEAR(cosim::row_number(rows[i], "traction_minus_rrf_N"), 175.0, 1e-12);
+  }
+  // The block has no free-rolling run: it keeps its own.
+  EXPECT_TRUE(std::isnan(cosim::row_number(rows[2], "rolling_radius_for_F5_m")));
+  EXPECT_EQ(cosim::row_number(rows[2], "drawbar_pull_N"), -100.0);
+  // One reference case for all.
+  cosim::scene::StudyF5Radius one;
+  one.set_case_label("block600");
+  std::vector<StudyRow> again{driven("smooth", "0", 0.4), driven("block", "600", 0.3)};
+  cosim::apply_f5_radius(one, again);
+  EXPECT_NEAR(cosim::row_number(again[0], "rolling_resistance_force_N"), 300.0, 1e-12);
+}
+
 }  // namespace
