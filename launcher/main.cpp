@@ -1,7 +1,7 @@
 // cosim: run a scene with the participants it needs, check a scene, run a study.
 //   cosim run SCENE --out DIR [--set field.path=value ...]
 //   cosim check SCENE [--set ...]
-//   cosim study STUDY --out DIR [--pass NAME] [--resume]
+//   cosim study STUDY --out DIR [--pass NAME] [--resume] [--tabulate]
 //   cosim monitor [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...] [--csv FILE]
 #include <cstdio>
 #include <string>
@@ -34,13 +34,15 @@ int main(int argc, char** argv) {
   check_cmd->add_option("scene", check_file, "scene file")->required();
   check_cmd->add_option("--set", check_sets, "override a scene field");
   std::string study_file, study_out, study_pass;
-  bool study_no_vtk = false, study_resume = false;
+  bool study_no_vtk = false, study_resume = false, study_tabulate = false;
   auto* study_cmd = app.add_subcommand("study", "run a study (several cases) and tabulate");
   study_cmd->add_option("study", study_file, "study file")->required();
   study_cmd->add_option("--out", study_out, "output folder")->required();
   study_cmd->add_flag("--no-vtk", study_no_vtk, "do not write VTK files");
   study_cmd->add_flag("--resume", study_resume,
                       "keep the cases already completed in --out with the same overrides, run the others");
+  study_cmd->add_flag("--tabulate", study_tabulate,
+                      "run nothing: write the tables, plots and report.html from the runs completed in --out");
   study_cmd->add_option("--pass", study_pass,
                         "run one resolution pass of the study (e.g. coarse or fine); the tables join every pass completed in --out");
   cosim::MonitorOptions monitor;
@@ -85,7 +87,7 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(r.samples));
       return 0;
     }
-    return cosim::run_study({study_file, study_out, study_no_vtk, study_resume, study_pass});
+    return cosim::run_study({study_file, study_out, study_no_vtk, study_resume, study_pass, study_tabulate});
   } catch (const cosim::Error& e) {
     std::fprintf(stderr, "cosim: error: %s\n", e.what());
     return 2;

@@ -356,7 +356,7 @@ int run_study(const StudyRequest& request) {
                        static_cast<int>(plan.cases.size() * passes_of(s).size())};
   try {
     for (const auto& pass : passes_of(s))
-      if (request.pass.empty() || pass.name() == request.pass) run_pass(plan, pass, request);
+      if (!request.tabulate_only && (request.pass.empty() || pass.name() == request.pass)) run_pass(plan, pass, request);
   } catch (const Error&) {
     // Nothing completed is lost: what finished is written, and --resume runs the rest.
     const auto rows = gather(plan, request.out_dir);

@@ -42,6 +42,8 @@ struct StudyRequest {
   // overrides is taken as it is instead of being run again.
   bool resume = false;
   std::string pass;  // "": every pass of the study, in order
+  // Run nothing: write the tables, plots and report from the runs completed in out_dir.
+  bool tabulate_only = false;
 };
 // Runs the cases of a study (of one pass or of all) and writes, from every run
 // completed in DIR (so a pass run later joins the earlier one's): table.csv,

@@ -148,8 +148,11 @@ std::vector<Ordering> read_orderings(const std::string& csv_path) {
 OrderingOutcome evaluate_ordering(const Ordering& o, const std::vector<StudyRow>& rows) {
   OrderingOutcome result;
   std::vector<const StudyRow*> kept;
+  const bool numeric_column = o.kind == "increasing" || o.kind == "decreasing";
   for (const auto& r : rows)
-    if (row_matches(r, o.where) && !std::isnan(row_number(r, o.quantity))) kept.push_back(&r);
+    if (row_matches(r, o.where) && !std::isnan(row_number(r, o.quantity)) &&
+        !(numeric_column && std::isnan(row_number(r, o.column))))  // a run off the numeric axis
+      kept.push_back(&r);
   std::vector<std::string> details, failures;
   auto compare = [&](bool ok, const std::string& text) {
     ++result.compared;

@@ -7,6 +7,7 @@
 // pass, the orderings and the checks. Exact expectations: counts and labels.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -43,6 +44,13 @@ TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
   std::tie(code, out) = shell(study + " --pass fine");
   ASSERT_EQ(code, 0) << out;
   EXPECT_EQ(out.find("pass 'coarse'"), std::string::npos) << "--pass fine ran the coarse pass: " << out;
+  // --tabulate runs nothing and rewrites the same table.
+  const std::string before = read(dir + "/table.csv");
+  std::filesystem::remove(dir + "/table.csv");
+  std::tie(code, out) = shell(study + " --tabulate");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(out.find("case 1/2"), std::string::npos) << "--tabulate ran a case: " << out;
+  EXPECT_EQ(read(dir + "/table.csv"), before);
   std::tie(code, out) = shell(study + " --pass medium");
   EXPECT_NE(code, 0);
   EXPECT_NE(out.find("--pass medium: the study's passes are coarse fine"), std::string::npos) << out;
