@@ -20,12 +20,8 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string num(double v) {
-  if (std::isnan(v)) return "";
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
+// A number for a CSV cell ("" when absent).
+std::string num(double v) { return std::isnan(v) ? "" : number_text(v); }
 
 std::string json_num(const nlohmann::json& v) {
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";  // e.g. plate_at_rest
@@ -49,6 +45,13 @@ std::vector<std::string> pass_names(const scene::Study& s) {
 
 // The table column of an extra result field: COLUMN of COLUMN=PATH, else the path.
 std::string column_of(const std::string& extra) { return extra.substr(0, extra.find('=')); }
+
+// The table columns of the study's result and extra results.
+std::vector<std::string> reported_quantities(const scene::Study& s) {
+  std::vector<std::string> quantities{s.result_field()};
+  for (const auto& f : s.extra_result_fields()) quantities.push_back(column_of(f));
+  return quantities;
+}
 
 std::vector<StudyRow> rows_of(const std::vector<StudyRow>& rows, const std::string& pass) {
   std::vector<StudyRow> out;
@@ -128,8 +131,7 @@ void write_table(const StudyOutputs& o, const std::vector<StudyRow>& rows, const
 void write_error_vs_runtime(const StudyOutputs& o, const std::vector<StudyRow>& rows) {
   const auto& s = o.study;
   const auto passes = pass_names(s);
-  std::vector<std::string> quantities{s.result_field()};
-  for (const auto& f : s.extra_result_fields()) quantities.push_back(column_of(f));
+  const auto quantities = reported_quantities(s);
   std::ofstream out(o.out_dir + "/error_vs_runtime.csv");
   out << "case,quantity,pass,value,wall_time_s,reference_pass,reference,relative_error\n";
   for (const auto& r : rows) {
@@ -180,8 +182,7 @@ std::string plot_error_vs_runtime(const StudyOutputs& o, const std::vector<Study
 std::string plot_pass_errors(const StudyOutputs& o, const std::vector<StudyRow>& rows) {
   const auto& s = o.study;
   const auto passes = pass_names(s);
-  std::vector<std::string> quantities{s.result_field()};
-  for (const auto& f : s.extra_result_fields()) quantities.push_back(column_of(f));
+  const auto quantities = reported_quantities(s);
   std::vector<PlotCurve> curves;
   make_folder(o.out_dir + "/plots");
   for (const auto& q : quantities) {

@@ -91,10 +91,7 @@ double row_number(const StudyRow& row, const std::string& quantity) {
 std::string row_text(const StudyRow& row, const std::string& column) {
   if (auto p = row.parameters.find(column); p != row.parameters.end()) return p->second;
   const double v = row_number(row, column);
-  if (std::isnan(v)) return "";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
+  return std::isnan(v) ? "" : number_text(v);
 }
 
 bool row_matches(const StudyRow& row, const std::string& where) {
