@@ -210,9 +210,45 @@ std::string plot_pass_errors(const StudyOutputs& o, const std::vector<StudyRow>&
   return plot_png(png, p, curves) ? "error_vs_runtime.png" : "";
 }
 
+PlotOptions plot_options(const scene::StudyPlot& plot, const std::string& pass) {
+  PlotOptions p;
+  p.title = plot.title() + (pass.empty() ? "" : " (" + pass + " pass)");
+  p.x_label = plot.x_label().empty() ? plot.x() : plot.x_label();
+  p.y_label = plot.y_label().empty() ? plot.y(0) : plot.y_label();
+  p.extra_commands = "set xzeroaxis lt -1\nset key outside right\n";
+  p.width_px = 1000;
+  return p;
+}
+
+// A plot of a CSV every run writes (plot.run_csv): its x and y columns, one
+// line per case, drawn from the run's own file (the hydroplaning study's road
+// force against speed). A case whose run has no such file is left out.
+std::string draw_run_csv_plot(const StudyOutputs& o, const scene::StudyPlot& plot,
+                              const std::vector<StudyRow>& pass_rows, const std::string& pass) {
+  std::vector<PlotCurve> curves;
+  for (const auto& r : pass_rows) {
+    if (!row_matches(r, plot.where())) continue;
+    const std::string csv = o.out_dir + (pass.empty() ? "" : "/" + pass) + "/" + r.label + "/" + plot.run_csv();
+    if (!std::ifstream(csv)) continue;
+    const CsvTable table = read_csv(csv);
+    std::string name;
+    for (const auto& c : plot.series()) name += (name.empty() ? "" : ", ") + row_text(r, c);
+    if (name.empty()) name = r.label;
+    for (int k = 0; k < plot.y_size(); ++k) {
+      const std::string columns =
+          std::to_string(table.column(plot.x()) + 1) + ":" + std::to_string(table.column(plot.y(k)) + 1);
+      curves.push_back({csv, columns, "lines lw 2", plot.y_size() > 1 ? name + ": " + plot.y(k) : name});
+    }
+  }
+  if (curves.empty()) return "";
+  const std::string png = (pass.empty() ? "" : pass + "_") + plot.file();
+  return plot_png(o.out_dir + "/" + png, plot_options(plot, pass), curves) ? png : "";
+}
+
 // A plot of the study (thesis-figure style): y against x, a line per series.
 std::string draw_plot(const StudyOutputs& o, const scene::StudyPlot& plot, const std::vector<StudyRow>& pass_rows,
                       const std::string& pass) {
+  if (!plot.run_csv().empty()) return draw_run_csv_plot(o, plot, pass_rows, pass);
   std::map<std::string, std::vector<const StudyRow*>> series;
   for (const auto& r : pass_rows) {
     if (!row_matches(r, plot.where()) || std::isnan(row_number(r, plot.x()))) continue;
@@ -245,14 +281,8 @@ std::string draw_plot(const StudyOutputs& o, const scene::StudyPlot& plot, const
       curves.push_back({data, "1:" + std::to_string(k + 2), "linespoints pt 7 ps 1.2 lw 2", title});
     }
   }
-  PlotOptions p;
-  p.title = plot.title() + (pass.empty() ? "" : " (" + pass + " pass)");
-  p.x_label = plot.x_label().empty() ? plot.x() : plot.x_label();
-  p.y_label = plot.y_label().empty() ? plot.y(0) : plot.y_label();
-  p.extra_commands = "set xzeroaxis lt -1\nset key outside right\n";
-  p.width_px = 1000;
   const std::string png = stem + ".png";
-  return plot_png(o.out_dir + "/" + png, p, curves) ? png : "";
+  return plot_png(o.out_dir + "/" + png, plot_options(plot, pass), curves) ? png : "";
 }
 
 }  // namespace

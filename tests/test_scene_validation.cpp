@@ -138,6 +138,18 @@ TEST(SceneValidation, CommandLineOverridesAreChecked) {
   EXPECT_EQ(error_of(path, {"sph.kernel=QUINTIC", "sph.particle_spacing_m=0.025"}), "");
 }
 
+// A repeated number is set by index: an entry replaced in place, the next index appended.
+TEST(SceneValidation, RepeatedNumbersAreSetByIndex) {
+  const auto path = write_scene("repeated", kValid);
+  const auto scene = cosim::load_scene(path, {"sph.symmetry_planes[0]=Y_MIN", "sph.symmetry_planes[1]=Y_MAX",
+                                              "sph.symmetry_planes[0]=X_MIN"});
+  ASSERT_EQ(scene->message.sph().symmetry_planes_size(), 2);
+  EXPECT_EQ(scene->message.sph().symmetry_planes(0), cosim::scene::X_MIN);
+  EXPECT_EQ(scene->message.sph().symmetry_planes(1), cosim::scene::Y_MAX);
+  EXPECT_NE(error_of(path, {"sph.symmetry_planes[1]=Y_MIN"}).find("index 1 out of range"), std::string::npos);
+  EXPECT_NE(error_of(path, {"sph.symmetry_planes=Y_MIN"}).find("give an index"), std::string::npos);
+}
+
 TEST(SceneValidation, AllProblemsAreReportedAtOnce) {
   auto text = replace(kValid, "particle_spacing_m: 0.02", "particle_spacing_m: 0");
   text = replace(text, "end_time_s: 0.01", "end_time_s: -1");

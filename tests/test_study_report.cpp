@@ -65,6 +65,7 @@ TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
   ASSERT_NE(coarse_check, std::string::npos) << checks;
   EXPECT_NE(checks.substr(coarse_check, checks.find('\n', coarse_check) - coarse_check).find(",yes,"), std::string::npos)
       << checks;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/coarse_front_vs_time.png"));
   const std::string errors = read(dir + "/error_vs_runtime.csv");
   EXPECT_NE(errors.find("5ms,final_front_m,coarse,"), std::string::npos) << errors;
 
@@ -78,8 +79,9 @@ TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
   ASSERT_EQ(browser, 0) << dom;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-figures-loaded=\"(\\d+)/(\\d+)\""))) << dom.substr(0, 2000);
-  // Per pass: front.png; and the passes' error plot: three figures.
-  EXPECT_EQ(m[2], "3") << dom.substr(0, 2000);
+  // Per pass: front.png and front_vs_time.png (from each run's front.csv); and the
+  // passes' error plot: five figures.
+  EXPECT_EQ(m[2], "5") << dom.substr(0, 2000);
   EXPECT_EQ(m[1], m[2]) << "figures that did not load";
   ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-tables=\"(\\d+)\"")));
   std::smatch expected;

@@ -147,11 +147,19 @@ void apply_override(pb::Message& root, const std::string& assignment) {
     if (field->cpp_type() == pb::FieldDescriptor::CPPTYPE_STRING && !value.empty() &&
         value.front() != '"')
       value = "\"" + value + "\"";
-    if (field->is_repeated())
-      throw Error(context + ": repeated scalar fields cannot be overridden; edit the scene file");
+    const int size = field->is_repeated() ? refl->FieldSize(*msg, field) : 0;
+    if (field->is_repeated() && tokens[k].index > size)
+      throw Error(context + ": index " + std::to_string(tokens[k].index) + " out of range (" + field->name() +
+                  " has " + std::to_string(size) + " entries; the next one is [" + std::to_string(size) + "])");
+    // A repeated field gets the value appended ...
     if (!pb::TextFormat::ParseFieldValueFromString(value, field, msg))
       throw Error(context + ": \"" + value + "\" is not a valid " + field->type_name() +
                   " for " + field->full_name());
+    // ... and moved to its index when it replaces an entry.
+    if (field->is_repeated() && tokens[k].index < size) {
+      refl->SwapElements(msg, field, tokens[k].index, size);
+      refl->RemoveLast(msg, field);
+    }
   }
 }
 
@@ -316,6 +324,8 @@ bool has_fe_body(const scene::Scene& scene) { return scene.has_tyre() || scene.h
 double planned_end_time_s(const scene::Scene& scene) {
   if (scene.has_tread_block()) {
     const auto& b = scene.tread_block();
+    // tyre_fe::SlideSpec: the load ramped in and held, then the slide.
+    if (b.load_n() > 0) return b.push_ramp_time_s() + b.hold_s() + b.slide_s();
     // tyre_fe::PushPath: down by the gap and the depth at the speed, ramped in and out, then held.
     const double v = b.push_speed_m_per_s();
     return (v > 0 ? (b.initial_gap_m() + b.push_depth_m()) / v : 0.0) + b.push_ramp_time_s() + b.hold_s();

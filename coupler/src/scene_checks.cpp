@@ -33,6 +33,11 @@ void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::Validation
     r.fail(loc.where("step_timeout_s"), "must be at most 5 s (a dead process must end the run within 5 s), got " +
                                             num(c.step_timeout_s()));
   if (c.domain_id() < 0 || c.domain_id() > 232) r.fail(loc.where("domain_id"), "must be in 0..232");
+  if (c.active_domain_wake_limit_m() != 0.0 &&
+      !(c.active_domain_wake_limit_m() >= c.active_domain_margin_m() && c.active_domain_margin_m() > 0.0))
+    r.fail(loc.where("active_domain_wake_limit_m"),
+           "must be 0 (no limit) or at least active_domain_margin_m (" + num(c.active_domain_margin_m()) +
+               ", which must be > 0), got " + num(c.active_domain_wake_limit_m()));
   for (int i = 0; i < c.tag_friction_size(); ++i) {
     try {
       facet_tag_from_name(c.tag_friction(i).tag());
@@ -51,8 +56,9 @@ void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::Validation
            "the terrain surface of a coupled scene is the plane z = 0: the highest block must end at z = 0 (got " +
                num(top) + ")");
   if (c.rigid_road_under_terrain()) {
-    if (!scene.has_tyre())
-      r.fail(loc.where("rigid_road_under_terrain"), "the road under the terrain is the tyre's: the scene needs a `tyre`");
+    if (!cosim::has_fe_body(scene))
+      r.fail(loc.where("rigid_road_under_terrain"),
+             "the road under the terrain is the FE body's: the scene needs a `tyre` or a `tread_block`");
     if (!(scene.sph().container().min().z() < 0.0))
       r.fail(loc.where("rigid_road_under_terrain"),
              "the road lies at the terrain's floor (sph.container.min.z), which must be below its surface z = 0 (got " +

@@ -204,7 +204,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
     solver_->couple(contact);
     // A particle still moving faster than 1 cm/s stays in the active domain
     // (docs/coupling.md): the resting terrain is at rest to well below that.
-    solver_->set_active_domain(c.active_domain_margin_m(), 0.01);
+    solver_->set_active_domain(c.active_domain_margin_m(), 0.01, c.active_domain_wake_limit_m());
     solver_->prepare();  // sound speeds and accelerations of the first step
     const double limit = solver_->stability_limit_dt();
     const double agreed = port_->connect(model.settings.cfl * limit);
@@ -410,6 +410,7 @@ void SphRun::finalize(cosim::RunRecord& record) {
     perf["held_load_window_limit_s"] = solver.held_load_limit_dt();
     perf["smallest_terrain_stability_limit_s"] = solver.smallest_limit_dt();
     perf["active_domain_margin_m"] = scene_.coupling().active_domain_margin_m();
+    perf["active_domain_wake_limit_m"] = scene_.coupling().active_domain_wake_limit_m();
     const double* impulse = solver.surface_impulse_Ns();
     summary["surface_impulse_on_particles_Ns"] = {impulse[0], impulse[1], impulse[2]};
   }

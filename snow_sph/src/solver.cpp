@@ -650,9 +650,10 @@ void Solver::update_energy(double dt) {
   energy_.external_work += (gw + body_work + bp) * dt;
 }
 
-void Solver::set_active_domain(double margin_m, double wake_speed_m_per_s) {
+void Solver::set_active_domain(double margin_m, double wake_speed_m_per_s, double wake_limit_m) {
   active_margin_m_ = margin_m;
   wake_speed_ = wake_speed_m_per_s;
+  wake_limit_m_ = wake_limit_m;
   domain_ = coupled_ && margin_m > 0.0;
 }
 
@@ -694,7 +695,11 @@ void Solver::update_activity(const ContactSurface* surface) {
     // depth below it (a margin in depth froze the snow under a loaded tyre and
     // made the layer stiffer: +26 % vertical force on the coarse indentation).
     const bool inside = p.x[i] >= lo[0] && p.x[i] <= hi[0] && p.y[i] >= lo[1] && p.y[i] <= hi[1];
-    const bool next = inside || (p.active[i] && v2 > wake2);
+    // A moving particle stays, within the wake limit (grown beyond the margin) if there is one.
+    const double w = wake_limit_m_ - active_margin_m_;
+    const bool near = wake_limit_m_ <= 0.0 || (p.x[i] >= lo[0] - w && p.x[i] <= hi[0] + w && p.y[i] >= lo[1] - w &&
+                                               p.y[i] <= hi[1] + w);
+    const bool next = inside || (p.active[i] && v2 > wake2 && near);
     if (p.active[i] && !next) {
       // Comes to rest where it is: its kinetic energy leaves the balance as a loss.
       removed += 0.5 * p.mass[i] * v2;

@@ -4,13 +4,16 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/ramp.hpp"
+#include "cosim/signal.hpp"
 #include "cosim/parallel.hpp"
 #include "cosim/participant.hpp"
 #include "tyre_fe/model3d.hpp"
+#include "tyre_fe/hydroplaning.hpp"
 #include "tyre_fe/outputs.hpp"
 #include "tyre_fe/scene.hpp"
 #include "tyre_fe/solver3d.hpp"
@@ -73,6 +76,16 @@ class TyreRun final : public cosim::Participant {
   }
   void plots(cosim::RunRecord& record) override {
     if (stepping_) write_plots(record.out_dir());
+    if (hydroplaning_curve_) {
+      const double tenth = kHydroplaningRoadShare * load_;
+      record.plot("road_share_vs_speed.csv", "road_force_vs_speed.png", 2,
+                  {{3, "road force on the tyre"}, {4, "water lift on the tyre"}},
+                  scene_.name() + ": road force against speed (" + cosim::number_text(1e3 * kHydroplaningFilter_s) +
+                      " ms mean)",
+                  "forward speed [m/s]", "vertical force [N]",
+                  "set arrow from graph 0, first " + cosim::number_text(tenth) + " to graph 1, first " +
+                      cosim::number_text(tenth) + " nohead dt 2 lc rgb 'gray40'\n");
+    }
   }
   std::string end_status() const override { return at_max_steps_ ? "stopped_at_max_steps" : "completed"; }
 
@@ -84,6 +97,11 @@ class TyreRun final : public cosim::Participant {
   bool each_step();  // a stage's per-step work; true ends the stage early
   void begin_stage();
   void end_stage();
+  // A road under the terrain: the road's share of the load against the speed
+  // (road_share_vs_speed.csv) and the speeds where it falls below 50, 25 and 10 %.
+  void report_hydroplaning(nlohmann::json& results);
+  // The road has carried less than the criterion's share (trailing mean) for kAfloatHold_s.
+  bool afloat_now();
   void join_terrain();
   // Forces of the ground on the tyre: the rigid road, or a terrain solver's loads.
   double ground_fx() const { return s_.road.force_x_N + s_.terrain.load_totals.force_N[0]; }
@@ -129,6 +147,15 @@ class TyreRun final : public cosim::Participant {
   double spin_up_radius_ = 0.0, t_window_ = 0.0, average_window_ = 0.0;
   double x_w_ = 0, a_w_ = 0, fx_sum_ = 0, rim_fx_sum_ = 0, m_sum_ = 0, fz_sum_ = 0, h_sum_ = 0, w_sum_ = 0;
   double road_fz_sum_ = 0, road_area_sum_ = 0;  // a road under the terrain
+  // A road under the terrain: the rolling stage's road force and water lift
+  // against the speed, every step (hydroplaning.hpp).
+  std::vector<double> ramp_t_, ramp_v_, ramp_road_fz_, ramp_lift_fz_;
+  bool hydroplaning_curve_ = false;
+  // Afloat: the trailing mean of the road force (its first sample, its sum) and
+  // since when it has been below the criterion.
+  std::size_t trail_begin_ = 0;
+  double trail_sum_ = 0.0, below_since_ = 0.0;
+  bool afloat_ = false;
   long n_w_ = 0;
   bool in_window_ = false;
   // Coupled run.
@@ -420,6 +447,14 @@ bool TyreRun::each_step() {
       return at_rest_;
     }
     case kRolling:
+      if (road_under_terrain()) {
+        ramp_t_.push_back(s_.time_s), ramp_v_.push_back(s_.rim.vx);
+        ramp_road_fz_.push_back(s_.road.force_z_N), ramp_lift_fz_.push_back(s_.terrain.load_totals.force_N[2]);
+        if (t_.stages().end_rolling_when_afloat() && afloat_now()) {
+          afloat_ = true;
+          return true;
+        }
+      }
       if (s_.time_s < t_window_) return false;
       if (!in_window_) x_w_ = s_.rim.x, a_w_ = s_.rim.angle, in_window_ = true;
       fx_sum_ += ground_fx(), m_sum_ += s_.rim.rm2_Nm, fz_sum_ += ground_fz(), ++n_w_;
@@ -499,6 +534,7 @@ void TyreRun::end_stage() {
         results["road_vertical_force_rolling_N"] = n ? road_fz_sum_ / n : 0.0;
         results["road_contact_area_rolling_m2"] = n ? road_area_sum_ / n : 0.0;
         results["terrain_vertical_force_rolling_N"] = n ? (fz_sum_ - road_fz_sum_) / n : 0.0;
+        report_hydroplaning(results);
       }
       // The tyre's force on the rim along x (forward positive), which holds the
       // rim's prescribed forward speed: at a steady state the ground's longitudinal
@@ -521,6 +557,43 @@ void TyreRun::end_stage() {
   }
   stage_ = static_cast<Stage>(stage_ + 1);
   stage_begun_ = false;
+}
+
+bool TyreRun::afloat_now() {
+  trail_sum_ += ramp_road_fz_.back();
+  while (ramp_t_[trail_begin_] < s_.time_s - kHydroplaningFilter_s) trail_sum_ -= ramp_road_fz_[trail_begin_++];
+  const double share = trail_sum_ / double(ramp_t_.size() - trail_begin_) / load_;
+  if (share >= kHydroplaningRoadShare || ramp_t_.size() == 1) below_since_ = s_.time_s;
+  return s_.time_s - below_since_ >= kAfloatHold_s;
+}
+
+void TyreRun::report_hydroplaning(nlohmann::json& results) {
+  if (ramp_t_.size() < 2) return;
+  const RoadShareCurve curve = road_share_curve(ramp_t_, ramp_v_, ramp_road_fz_, load_, kHydroplaningFilter_s);
+  const std::vector<double> lift = cosim::centred_moving_mean(ramp_t_, ramp_lift_fz_, kHydroplaningFilter_s);
+  auto* csv = &record_->series("road_share_vs_speed.csv",
+                               {"time_s", "speed_m_per_s", "road_force_N", "water_lift_N", "road_share"});
+  double next = 0.0, least = 1e30;
+  for (std::size_t i = 0; i < curve.time_s.size(); ++i) {
+    least = std::min(least, curve.road_share[i]);
+    if (curve.time_s[i] < next && i + 1 < curve.time_s.size()) continue;
+    csv->row({curve.time_s[i], curve.speed_m_per_s[i], curve.road_share[i] * load_, lift[i], curve.road_share[i]});
+    next = curve.time_s[i] + csv_interval_;
+  }
+  auto speed = [&](double share) {
+    const double v = speed_below_road_share(curve, share);
+    return std::isnan(v) ? nlohmann::json() : nlohmann::json(v);
+  };
+  results["hydroplaning"] = {
+      {"critical_velocity_m_per_s", speed(kHydroplaningRoadShare)},
+      {"criterion", "the road carries less than " + cosim::number_text(100 * kHydroplaningRoadShare) +
+                        " % of the wheel load from this speed on (" + cosim::number_text(1e3 * kHydroplaningFilter_s) +
+                        " ms centred mean); null: not reached"},
+      {"speed_below_road_share_m_per_s", {{"50_percent", speed(0.5)}, {"25_percent", speed(0.25)}, {"10_percent", speed(0.1)}}},
+      {"least_road_share", least},
+      {"ended_afloat", afloat_},
+      {"top_speed_m_per_s", curve.speed_m_per_s.back()}};
+  hydroplaning_curve_ = true;
 }
 
 void TyreRun::finalize(cosim::RunRecord& record) {

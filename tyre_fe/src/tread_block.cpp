@@ -114,12 +114,16 @@ void validate_tread_block_scene(const cosim::LoadedScene& loaded, cosim::Validat
   if (!scene.has_sph() || scene.coupling().terrain().empty() || scene.coupling().terrain() == "rigid_road")
     r.fail(loaded.locator().child("coupling").where("terrain"),
            "a tread block is pushed into an SPH terrain: give an `sph` section and coupling.terrain (a material file)");
-  for (const char* f : {"length_x_m", "width_y_m", "base_thickness_m", "element_size_m", "push_speed_m_per_s"}) {
+  const bool sliding = b.load_n() > 0.0;
+  std::vector<const char*> positive{"length_x_m", "width_y_m", "base_thickness_m", "element_size_m"};
+  positive.push_back(sliding ? "slide_s" : "push_speed_m_per_s");
+  for (const char* f : positive) {
     const double v = b.GetReflection()->GetDouble(b, b.GetDescriptor()->FindFieldByName(f));
     if (!(v > 0) || !std::isfinite(v)) r.fail(loc.where(f), "must be > 0, got " + cosim::number_text(v));
   }
   for (const char* f : {"groove_depth_m", "groove_width_m", "initial_gap_m", "push_depth_m", "push_ramp_time_s",
-                        "hold_s", "reference_node_mass_kg"}) {
+                        "hold_s", "reference_node_mass_kg", "load_N", "slide_speed_m_per_s", "slide_ramp_time_s",
+                        "average_last_s"}) {
     const double v = b.GetReflection()->GetDouble(b, b.GetDescriptor()->FindFieldByName(f));
     if (!(v >= 0) || !std::isfinite(v)) r.fail(loc.where(f), "must be >= 0, got " + cosim::number_text(v));
   }
@@ -131,8 +135,18 @@ void validate_tread_block_scene(const cosim::LoadedScene& loaded, cosim::Validat
   }
   if (b.groove_x_m_size() > 0 && !(b.groove_depth_m() > 0 && b.groove_width_m() > 0))
     r.fail(loc.where("groove_depth_m"), "grooves need groove_depth_m > 0 and groove_width_m > 0");
+  if (sliding) {
+    if (b.slide_ramp_time_s() > b.slide_s())
+      r.fail(loc.where("slide_ramp_time_s"), "the slide's speed ramp (" + cosim::number_text(b.slide_ramp_time_s()) +
+                                                 " s) is longer than the slide (slide_s " +
+                                                 cosim::number_text(b.slide_s()) + " s)");
+    if (b.average_last_s() > b.slide_s() - b.slide_ramp_time_s())
+      r.fail(loc.where("average_last_s"), "the results' window reaches into the slide's speed ramp");
+    if (!(b.road().friction_coefficient() >= 0 && b.road().friction_coefficient() <= 2))
+      r.fail(loc.child("road").where("friction_coefficient"), "must be in [0, 2]");
+  }
   const double total = b.initial_gap_m() + b.push_depth_m();
-  if (b.push_speed_m_per_s() > 0 && b.push_ramp_time_s() * b.push_speed_m_per_s() > total)
+  if (!sliding && b.push_speed_m_per_s() > 0 && b.push_ramp_time_s() * b.push_speed_m_per_s() > total)
     r.fail(loc.where("push_ramp_time_s"), "the speed ramps in and out over " +
                                               cosim::number_text(b.push_ramp_time_s()) + " s each, which at " +
                                               cosim::number_text(b.push_speed_m_per_s()) +
@@ -183,6 +197,9 @@ TreadBlockSetup tread_block_setup(const cosim::LoadedScene& loaded) {
   s.initial_gap_m = b.initial_gap_m(), s.push_depth_m = b.push_depth_m(), s.hold_s = b.hold_s();
   s.path = {b.initial_gap_m() + b.push_depth_m(), b.push_speed_m_per_s(), b.push_ramp_time_s()};
   s.reference_node_mass_kg = b.reference_node_mass_kg();
+  s.sliding = b.load_n() > 0.0;
+  s.slide = {b.load_n(), b.push_ramp_time_s(), b.hold_s(), b.slide_speed_m_per_s(), b.slide_ramp_time_s(), b.slide_s(),
+             b.average_last_s() > 0.0 ? b.average_last_s() : 0.5 * b.slide_s()};
   return s;
 }
 

@@ -4,12 +4,14 @@
 // the tyre's (run.cpp): at a coupling window's start
 //   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
 // the reference node (the "rim") moving the top face down along the push path.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "cosim/error.hpp"
 #include "cosim/participant.hpp"
+#include "cosim/ramp.hpp"
 #include "tyre_fe/model3d.hpp"
 #include "tyre_fe/outputs.hpp"
 #include "tyre_fe/run.hpp"
@@ -38,6 +40,13 @@ class TreadBlockRun final : public cosim::Participant {
     report_failure(port_, reason);
   }
   void plots(cosim::RunRecord& record) override {
+    if (slide_csv_) {
+      record.plot("block_slide.csv", "block_slide_forces.png", 1,
+                  {{5, "longitudinal force (holder)"}, {6, "road force x"}, {9, "water force x"}},
+                  loaded_.message.name() + ": longitudinal forces on the sliding block", "time [s]", "force [N]");
+      record.plot("block_slide.csv", "block_slide_load_share.png", 1, {{7, "road force z"}, {10, "water force z"}},
+                  loaded_.message.name() + ": who carries the load", "time [s]", "force [N]");
+    }
     if (!csv_) return;
     record.plot("tread_block.csv", "tread_block_force.png", 3, {{6, "terrain on the block, vertical"}},
                 loaded_.message.name() + ": force against the depth of the ribs", "depth of the rib faces below the snow [m]",
@@ -48,6 +57,10 @@ class TreadBlockRun final : public cosim::Participant {
   // Lowest point of the ribs' faces below the terrain surface z = 0 [m] (the reference node's path).
   double face_depth_m() const { return displacement_m() - setup_.initial_gap_m; }
   double displacement_m() const { return -s_.rim.z; }
+  // The slide (thesis 4.3): the reference node's drive now, its per-step sums and its results.
+  RimDrive slide_drive() const;
+  void slide_sums();
+  void slide_results(nlohmann::json& results) const;
 
   const cosim::LoadedScene& loaded_;
   RunOptions options_;
@@ -60,6 +73,12 @@ class TreadBlockRun final : public cosim::Participant {
   double end_s_ = 0.0, next_csv_ = 0.0, csv_interval_ = 0.0, exchange_s_ = 0.0;
   double max_force_z_N_ = 0.0;
   bool failed_ = false;
+  cosim::CsvWriter* slide_csv_ = nullptr;
+  // Sums over the slide's averaging window: the holder's longitudinal force, the
+  // road's and the water's forces, the road's contact area.
+  double sum_fx_ = 0, sum_road_fx_ = 0, sum_road_fz_ = 0, sum_area_ = 0, sum_water_fx_ = 0, sum_water_fz_ = 0;
+  double sum_fx2_ = 0, window_x0_ = 0.0;
+  long n_window_ = 0;
 };
 
 double TreadBlockRun::initialize(cosim::RunRecord& record) {
@@ -85,6 +104,19 @@ double TreadBlockRun::initialize(cosim::RunRecord& record) {
   s_.road.height_m = 0.0;      // heights are measured from the terrain surface
   s_.terrain.surface = make_contact_surface(model, s_);
   s_.terrain.band_m = scene.coupling().contact_band_m();
+  if (scene.coupling().rigid_road_under_terrain()) {
+    // The road at the terrain's floor (a water film on it), as under a tyre (run.cpp).
+    const auto& road = scene.tread_block().road();
+    s_.road.present = true;
+    s_.road.height_m = scene.sph().container().min().z();
+    s_.road.friction_coefficient = road.friction_coefficient();
+    s_.road.penalty_scale = road.penalty_scale() > 0.0 ? road.penalty_scale() : 0.1;
+  }
+  if (setup_.sliding)
+    slide_csv_ = &record.series("block_slide.csv",
+                                {"time_s", "reference_x_m", "reference_z_m", "slide_speed_m_per_s",
+                                 "longitudinal_force_N", "road_force_x_N", "road_force_z_N", "road_contact_area_m2",
+                                 "water_force_x_N", "water_force_z_N"});
   csv_ = &record.series("tread_block.csv", {"time_s", "reference_displacement_m", "face_depth_m",
                                             "terrain_force_x_N", "terrain_force_y_N", "terrain_force_z_N",
                                             "contact_area_m2", "holder_force_z_N", "kinetic_J", "internal_J",
@@ -105,6 +137,12 @@ double TreadBlockRun::initialize(cosim::RunRecord& record) {
 
 bool TreadBlockRun::advance() {
   if (!(s_.time_s < end_s_ - 0.5 * s_.dt_s)) return false;
+  if (setup_.sliding) {
+    step_on_terrain(*model_, s_, *port_, slide_drive(), exchange_s_);
+    slide_sums();
+    max_force_z_N_ = std::max(max_force_z_N_, s_.terrain.load_totals.force_N[2]);
+    return true;
+  }
   // The reference node moves from d(t) to d(t + dt) in this step: the path is met exactly at every step.
   RimDrive drive;
   drive.prescribe_vz = true;
@@ -115,7 +153,52 @@ bool TreadBlockRun::advance() {
   return true;
 }
 
+RimDrive TreadBlockRun::slide_drive() const {
+  const SlideSpec& sl = setup_.slide;
+  RimDrive d;  // spin held at 0, z free
+  d.wheel_load_N = sl.load_N * cosim::ramp(cosim::RampCurve::smoothstep, s_.time_s, sl.load_ramp_s);
+  d.hold_x = false;  // x moves at the prescribed speed (0 until the slide starts)
+  d.forward_speed_m_per_s =
+      s_.time_s > sl.start_s() ? cosim::ramp(cosim::RampCurve::smoothstep, s_.time_s - sl.start_s(), sl.speed_ramp_s, sl.speed_m_per_s) : 0.0;
+  return d;
+}
+
+void TreadBlockRun::slide_sums() {
+  if (s_.time_s < setup_.slide.end_s() - setup_.slide.average_s) return;
+  if (n_window_ == 0) window_x0_ = s_.rim.x;
+  // The holder pulls the block forward: the tyre_fe rim's force from the block, reversed.
+  const double fx = -s_.rim.tyre_force_x_N;
+  sum_fx_ += fx, sum_fx2_ += fx * fx;
+  sum_road_fx_ += s_.road.force_x_N, sum_road_fz_ += s_.road.force_z_N, sum_area_ += s_.road.contact_area_m2;
+  sum_water_fx_ += s_.terrain.load_totals.force_N[0], sum_water_fz_ += s_.terrain.load_totals.force_N[2];
+  ++n_window_;
+}
+
+void TreadBlockRun::slide_results(nlohmann::json& results) const {
+  const SlideSpec& sl = setup_.slide;
+  const double n = n_window_ > 0 ? double(n_window_) : 1.0;
+  const double fx = sum_fx_ / n;
+  results["load_N"] = sl.load_N;
+  results["slide_speed_m_per_s"] = sl.speed_m_per_s;
+  results["averaging_window_s"] = sl.average_s;
+  results["slide_distance_in_window_m"] = s_.rim.x - window_x0_;
+  results["longitudinal_force_N"] = fx;  // the holder's pull, the thesis's F (Table 4.3)
+  results["longitudinal_force_std_N"] = std::sqrt(std::max(0.0, sum_fx2_ / n - fx * fx));
+  results["friction_coefficient"] = fx / sl.load_N;  // mu = F / P
+  results["road_force_x_N"] = sum_road_fx_ / n;
+  results["road_vertical_force_N"] = sum_road_fz_ / n;
+  results["road_contact_area_m2"] = sum_area_ / n;
+  results["water_force_x_N"] = sum_water_fx_ / n;
+  results["water_vertical_force_N"] = sum_water_fz_ / n;  // the film's lift
+  results["road_load_share"] = sum_road_fz_ / n / sl.load_N;
+}
+
 void TreadBlockRun::output(cosim::RunRecord&) {
+  if (slide_csv_ && s_.time_s >= next_csv_) {
+    const auto& w = s_.terrain.load_totals.force_N;
+    slide_csv_->row({s_.time_s, s_.rim.x, s_.rim.z, s_.rim.vx, -s_.rim.tyre_force_x_N, s_.road.force_x_N,
+                     s_.road.force_z_N, s_.road.contact_area_m2, w[0], w[2]});
+  }
   if (s_.time_s >= next_csv_) {
     const auto& f = s_.terrain.load_totals.force_N;
     csv_->row({s_.time_s, displacement_m(), face_depth_m(), f[0], f[1], f[2], s_.terrain.load_totals.contact_area_m2,
@@ -138,6 +221,10 @@ void TreadBlockRun::finalize(cosim::RunRecord& record) {
   const double* impulse = s_.terrain.impulse_Ns;
   results["terrain_impulse_Ns"] = {impulse[0], impulse[1], impulse[2]};
   results["energy_balance_error"] = s_.energy.balance_error();
+  if (setup_.sliding) {
+    slide_results(results);
+    if (s_.road.present) write_footprint(record.out_dir(), *model_, s_);  // the road's contact pressure at the end
+  }
   record.summary()["dt_s"] = s_.dt_s;
   record.summary()["performance"] = {{"steps_per_s", record.wall_s() > 0 ? s_.step / record.wall_s() : 0.0},
                                      {"exchange_wait_s", exchange_s_}};

@@ -77,8 +77,11 @@ class Solver {
   // (stress, density, hardening) at rest and act on active neighbours as a
   // resting boundary, whose work is booked as external work. A particle that
   // comes into the domain has its forces computed for one step before it moves.
+  // wake_limit_m > 0 (at least margin_m): a moving particle farther than this,
+  // in plan, from the surface's box is set at rest all the same (its kinetic
+  // energy booked as for any particle leaving the domain).
   // Call before initialise().
-  void set_active_domain(double margin_m, double wake_speed_m_per_s);
+  void set_active_domain(double margin_m, double wake_speed_m_per_s, double wake_limit_m = 0.0);
   // The largest window over which the surface's owner may hold the loads (exchange 0).
   double held_load_limit_dt() const { return held_load_limit_dt_; }
   std::size_t active_particles() const { return force_list_.size(); }
@@ -183,7 +186,7 @@ class Solver {
   std::uint64_t substepped_windows_ = 0;
   std::uint32_t most_substeps_ = 1;
   // Active domain.
-  double active_margin_m_ = 0.0, wake_speed_ = 0.0;
+  double active_margin_m_ = 0.0, wake_speed_ = 0.0, wake_limit_m_ = 0.0;
   bool domain_ = false;
   std::vector<std::uint32_t> force_list_, move_list_;
   std::vector<double> frozen_;          // per particle and ghost: 1 at rest outside the domain

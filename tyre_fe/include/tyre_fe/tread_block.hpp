@@ -41,6 +41,17 @@ struct PushPath {
 };
 double push_displacement_m(const PushPath& p, double t_s);
 
+// Sliding instead of pushing (thesis 4.3, a block on a water film on a road):
+// the reference node carries the load (ramped in over load_ramp_s, z free),
+// holds it for settle_s, then slides along x at speed_m_per_s (ramped in over
+// speed_ramp_s) for slide_s; the results average over its last average_s.
+struct SlideSpec {
+  double load_N = 0.0, load_ramp_s = 0.0, settle_s = 0.0;
+  double speed_m_per_s = 0.0, speed_ramp_s = 0.0, slide_s = 0.0, average_s = 0.0;
+  double start_s() const { return load_ramp_s + settle_s; }
+  double end_s() const { return start_s() + slide_s; }
+};
+
 // Everything the block run needs, from a validated scene.
 struct TreadBlockSetup {
   TreadBlockGeometry geometry;
@@ -48,6 +59,8 @@ struct TreadBlockSetup {
   PushPath path;
   double initial_gap_m = 0.0, push_depth_m = 0.0, hold_s = 0.0;
   double reference_node_mass_kg = 0.0;
+  bool sliding = false;  // load_N > 0: the slide replaces the push path
+  SlideSpec slide;
 };
 // Ranges and rules, each failure naming the scene's file, line and field.
 void validate_tread_block_scene(const cosim::LoadedScene& scene, cosim::ValidationReport& report);

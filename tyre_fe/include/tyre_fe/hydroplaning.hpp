@@ -1,0 +1,39 @@
+#pragma once
+// Hydroplaning (thesis 4.2): a tyre rolls on a rigid road under a water layer
+// while its forward speed ramps up; the water's lift takes the wheel load off
+// the road until the tyre floats. The road's share of the wheel load against
+// the speed is the curve every criterion is read from; the critical velocity
+// is the speed from which that share stays below a stated fraction
+// (docs/water.md says why 10 %).
+#include <vector>
+
+namespace tyre_fe {
+
+// The road's share of the wheel load against the speed, per sample.
+struct RoadShareCurve {
+  std::vector<double> time_s, speed_m_per_s;
+  std::vector<double> road_share;  // road force / wheel load, centred moving mean over filter_s
+};
+
+// time_s ascending; road_force_z_N the road's vertical force on the tyre.
+// The raw road force swings with the particles entering and leaving the
+// footprint; the centred moving mean over filter_s (cosim/signal.hpp) is the
+// curve read. Throws cosim::Error if the series differ in length or the load is not positive.
+RoadShareCurve road_share_curve(const std::vector<double>& time_s, const std::vector<double>& speed_m_per_s,
+                                const std::vector<double>& road_force_z_N, double wheel_load_N, double filter_s);
+
+// The speed at which the share falls below `share` for the last time (from
+// there to the curve's end it stays below), linear between samples; the first
+// speed if it is below from the start; NaN if it is not below at the end.
+double speed_below_road_share(const RoadShareCurve& curve, double share);
+
+// The criterion of the reported critical velocity: the road carries less than this share of the load.
+inline constexpr double kHydroplaningRoadShare = 0.10;
+// The smoothing of the road force [s]: a tyre at 10 m/s passes 5 cm of road in it.
+inline constexpr double kHydroplaningFilter_s = 0.005;
+// Afloat (tyre.stages.end_rolling_when_afloat): below the criterion's share,
+// trailing 5 ms mean, for this long [s]: six times the filter, about two
+// footprint lengths of road at 14 m/s.
+inline constexpr double kAfloatHold_s = 0.03;
+
+}  // namespace tyre_fe
