@@ -3,7 +3,8 @@
 // steps of the tyre's explicit stages (solver3d.hpp) with the same exchange as
 // the tyre's (run.cpp): at a coupling window's start
 //   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
-// the reference node (the "rim") moving the top face down along the push path.
+// the reference node (the "rim") moving the top face down along the push path,
+// or (sliding, thesis 4.3) carrying a load with z free and sliding along x.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -158,8 +159,9 @@ RimDrive TreadBlockRun::slide_drive() const {
   RimDrive d;  // spin held at 0, z free
   d.wheel_load_N = sl.load_N * cosim::ramp(cosim::RampCurve::smoothstep, s_.time_s, sl.load_ramp_s);
   d.hold_x = false;  // x moves at the prescribed speed (0 until the slide starts)
+  const double sliding_s = s_.time_s - sl.start_s();
   d.forward_speed_m_per_s =
-      s_.time_s > sl.start_s() ? cosim::ramp(cosim::RampCurve::smoothstep, s_.time_s - sl.start_s(), sl.speed_ramp_s, sl.speed_m_per_s) : 0.0;
+      sliding_s > 0.0 ? cosim::ramp(cosim::RampCurve::smoothstep, sliding_s, sl.speed_ramp_s, sl.speed_m_per_s) : 0.0;
   return d;
 }
 
