@@ -688,6 +688,9 @@ void Solver::update_activity(const ContactSurface* surface) {
       for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a] - active_margin_m_), hi[a] = std::max(hi[a], c[a] + active_margin_m_);
     }
   const double wake2 = wake_speed_ * wake_speed_;
+  // A moving particle stays active within the wake limit (grown beyond the margin), if there is one.
+  const double w = wake_limit_m_ - active_margin_m_;
+  const double near_lo[2] = {lo[0] - w, lo[1] - w}, near_hi[2] = {hi[0] + w, hi[1] + w};
   double removed = 0.0;
   for (std::size_t i = 0; i < p.n_real; ++i) {
     const double v2 = p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i];
@@ -695,10 +698,8 @@ void Solver::update_activity(const ContactSurface* surface) {
     // depth below it (a margin in depth froze the snow under a loaded tyre and
     // made the layer stiffer: +26 % vertical force on the coarse indentation).
     const bool inside = p.x[i] >= lo[0] && p.x[i] <= hi[0] && p.y[i] >= lo[1] && p.y[i] <= hi[1];
-    // A moving particle stays, within the wake limit (grown beyond the margin) if there is one.
-    const double w = wake_limit_m_ - active_margin_m_;
-    const bool near = wake_limit_m_ <= 0.0 || (p.x[i] >= lo[0] - w && p.x[i] <= hi[0] + w && p.y[i] >= lo[1] - w &&
-                                               p.y[i] <= hi[1] + w);
+    const bool near = wake_limit_m_ <= 0.0 || (p.x[i] >= near_lo[0] && p.x[i] <= near_hi[0] &&
+                                               p.y[i] >= near_lo[1] && p.y[i] <= near_hi[1]);
     const bool next = inside || (p.active[i] && v2 > wake2 && near);
     if (p.active[i] && !next) {
       // Comes to rest where it is: its kinetic energy leaves the balance as a loss.

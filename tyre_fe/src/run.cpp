@@ -359,10 +359,7 @@ void TyreRun::join_terrain() {
   s_.road.height_m = 0.0;  // heights below are measured from the terrain surface
   if (c.rigid_road_under_terrain()) {
     // The road at the terrain's floor; heights are then measured from the road.
-    s_.road.present = true;
-    s_.road.height_m = scene_.sph().container().min().z();
-    s_.road.friction_coefficient = t_.road().friction_coefficient();
-    s_.road.penalty_scale = t_.road().penalty_scale() > 0.0 ? t_.road().penalty_scale() : 0.1;
+    set_road(s_, scene_.sph().container().min().z(), t_.road().friction_coefficient(), t_.road().penalty_scale());
   }
   s_.terrain.surface = make_contact_surface(model, s_);
   s_.terrain.band_m = c.contact_band_m();

@@ -62,8 +62,12 @@ void place_road(const Model3d& model, State3d& s, double gap_m, double friction_
                 double penalty_scale) {
   double lowest = 1e30;
   for (int n : model.contact_nodes) lowest = std::min(lowest, s.z[n]);
+  set_road(s, lowest - gap_m, friction_coefficient, penalty_scale);
+}
+
+void set_road(State3d& s, double height_m, double friction_coefficient, double penalty_scale) {
   s.road.present = true;
-  s.road.height_m = lowest - gap_m;
+  s.road.height_m = height_m;
   s.road.friction_coefficient = friction_coefficient;
   s.road.penalty_scale = penalty_scale > 0.0 ? penalty_scale : 0.1;
 }

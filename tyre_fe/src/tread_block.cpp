@@ -197,7 +197,6 @@ TreadBlockSetup tread_block_setup(const cosim::LoadedScene& loaded) {
   s.initial_gap_m = b.initial_gap_m(), s.push_depth_m = b.push_depth_m(), s.hold_s = b.hold_s();
   s.path = {b.initial_gap_m() + b.push_depth_m(), b.push_speed_m_per_s(), b.push_ramp_time_s()};
   s.reference_node_mass_kg = b.reference_node_mass_kg();
-  s.sliding = b.load_n() > 0.0;
   s.slide = {b.load_n(), b.push_ramp_time_s(), b.hold_s(), b.slide_speed_m_per_s(), b.slide_ramp_time_s(), b.slide_s(),
              b.average_last_s() > 0.0 ? b.average_last_s() : 0.5 * b.slide_s()};
   return s;

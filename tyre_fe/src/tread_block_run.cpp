@@ -108,12 +108,9 @@ double TreadBlockRun::initialize(cosim::RunRecord& record) {
   if (scene.coupling().rigid_road_under_terrain()) {
     // The road at the terrain's floor (a water film on it), as under a tyre (run.cpp).
     const auto& road = scene.tread_block().road();
-    s_.road.present = true;
-    s_.road.height_m = scene.sph().container().min().z();
-    s_.road.friction_coefficient = road.friction_coefficient();
-    s_.road.penalty_scale = road.penalty_scale() > 0.0 ? road.penalty_scale() : 0.1;
+    set_road(s_, scene.sph().container().min().z(), road.friction_coefficient(), road.penalty_scale());
   }
-  if (setup_.sliding)
+  if (setup_.sliding())
     slide_csv_ = &record.series("block_slide.csv",
                                 {"time_s", "reference_x_m", "reference_z_m", "slide_speed_m_per_s",
                                  "longitudinal_force_N", "road_force_x_N", "road_force_z_N", "road_contact_area_m2",
@@ -138,7 +135,7 @@ double TreadBlockRun::initialize(cosim::RunRecord& record) {
 
 bool TreadBlockRun::advance() {
   if (!(s_.time_s < end_s_ - 0.5 * s_.dt_s)) return false;
-  if (setup_.sliding) {
+  if (setup_.sliding()) {
     step_on_terrain(*model_, s_, *port_, slide_drive(), exchange_s_);
     slide_sums();
     max_force_z_N_ = std::max(max_force_z_N_, s_.terrain.load_totals.force_N[2]);
@@ -223,7 +220,7 @@ void TreadBlockRun::finalize(cosim::RunRecord& record) {
   const double* impulse = s_.terrain.impulse_Ns;
   results["terrain_impulse_Ns"] = {impulse[0], impulse[1], impulse[2]};
   results["energy_balance_error"] = s_.energy.balance_error();
-  if (setup_.sliding) {
+  if (setup_.sliding()) {
     slide_results(results);
     if (s_.road.present) write_footprint(record.out_dir(), *model_, s_);  // the road's contact pressure at the end
   }

@@ -133,6 +133,8 @@ struct State3d {
 State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& current,
                      double rim_mass_kg, double rim_inertia_kg_m2);
 
+// The rigid road at z = height_m with its friction and penalty scale (0: 0.1).
+void set_road(State3d& s, double height_m, double friction_coefficient, double penalty_scale);
 // Puts a flat road `gap` below the lowest outer node.
 void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
                 double penalty_scale);

@@ -59,8 +59,8 @@ struct TreadBlockSetup {
   PushPath path;
   double initial_gap_m = 0.0, push_depth_m = 0.0, hold_s = 0.0;
   double reference_node_mass_kg = 0.0;
-  bool sliding = false;  // load_N > 0: the slide replaces the push path
   SlideSpec slide;
+  bool sliding() const { return slide.load_N > 0.0; }  // the slide replaces the push path
 };
 // Ranges and rules, each failure naming the scene's file, line and field.
 void validate_tread_block_scene(const cosim::LoadedScene& scene, cosim::ValidationReport& report);
