@@ -29,6 +29,8 @@ nlohmann::json energy_json(const EnergyBalance& e) {
           {"contact_dissipation_J", e.contact_dissipation},
           {"contact_elastic_J", e.contact_elastic},
           {"external_work_J", e.external_work},
+          {"deactivated_kinetic_J", e.deactivated_kinetic},
+          {"drained_kinetic_J", e.drained_kinetic},
           {"balance_J", e.total() - e.initial_total},
           {"relative_error", e.relative_error()},
           {"note", "energies of the simulated particles and bodies; balance = KE + IE + VD + FD + "
@@ -219,7 +221,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
                                   {"damping_ratio", contact.damping_ratio}};
     contact_csv_ = &record.series("terrain_contact.csv",
                                   {"time_s", "force_on_surface_x_N", "force_on_surface_y_N", "force_on_surface_z_N",
-                                   "contact_area_m2", "particles_in_contact"});
+                                   "contact_area_m2", "particles_in_contact", "drained_water_particles"});
     stopped_ = !exchange_surface(0);
   }
   solver_->initialise();
@@ -368,7 +370,8 @@ void SphRun::record_rows(bool force) {
     double area = 0.0, in_contact = 0.0;
     for (double a : l.facet_contact_area_m2) area += a;
     for (auto c : l.particles_in_contact) in_contact += c;
-    contact_csv_->row({t, l.total_fx_N, l.total_fy_N, l.total_fz_N, area, in_contact});
+    contact_csv_->row({t, l.total_fx_N, l.total_fy_N, l.total_fz_N, area, in_contact,
+                       static_cast<double>(solver_->drained_particles())});
   }
 }
 
@@ -422,6 +425,15 @@ void SphRun::finalize(cosim::RunRecord& record) {
     results["rut_depth_m"] = rut.rut_depth_m;
     results["max_penetration_m"] = max_penetration_m_;
     results["particle_radius_m"] = particle_radius_m_;
+    // Water squeezed into films thinner than half a particle (docs/water.md).
+    double water_kg = 0.0;
+    for (std::size_t i = 0; i < p.n_real; ++i)
+      if (model.materials[p.material[i]].kind == MaterialModel::Kind::water) water_kg += p.mass[i];
+    if (water_kg > 0.0 || solver.drained_particles() > 0) {
+      results["drained_water_particles"] = solver.drained_particles();
+      results["drained_water_mass_kg"] = solver.drained_mass_kg();
+      results["drained_water_share"] = solver.drained_mass_kg() / (water_kg + solver.drained_mass_kg());
+    }
   }
   for (const auto& b : model.bodies) {
     results[b.name + "_displacement_m"] = b.z0 - b.z;

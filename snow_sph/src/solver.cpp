@@ -292,8 +292,10 @@ void Solver::update_materials(double dt) {
     // Stress power with the mid-step stress and mid-step volume.
     const double volume = p.mass[i] * 0.5 * (1.0 / rho_old + 1.0 / rho);
     stress_power_[i] = volume * (0.5 * (s_old + s)).cwiseProduct(D).sum();
-    if (eps_as > 0.0 && mat.kind == MaterialModel::Kind::snow) {
-      // Gray et al. (2001) eq. 4.7-4.9: repulsive term for tensile principal stresses.
+    if (eps_as > 0.0) {
+      // Gray et al. (2001) eq. 4.7-4.9: repulsive term for tensile principal
+      // stresses; for water in tension (p < 0) it is Monaghan's (2000) R = eps |p| / rho^2
+      // on every axis, which keeps a splash under negative pressure from clumping.
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
       es.computeDirect(s);
       Eigen::Vector3d rp = Eigen::Vector3d::Zero();
@@ -514,6 +516,13 @@ void Solver::compute_contact(double dt) {
 void Solver::couple(const SurfaceContactParameters& parameters) {
   coupled_ = true;
   surface_params_ = parameters;
+  // Water between a facet and a wall (the floor under a tread) in a film
+  // thinner than half a particle drains out of the flow (docs/water.md,
+  // "Films thinner than a particle"): half of such a particle no longer fits.
+  surface_params_.walls.clear();
+  for (const MirrorPlane& plane : m_.planes)
+    if (!plane.symmetry) surface_params_.walls.push_back({plane.axis, plane.position, plane.inside_sign});
+  surface_params_.drain_film_m = parameters.particle_radius_m;
 }
 
 double Solver::surface_contact_limit_dt() const {
@@ -549,9 +558,12 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   a_before_.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i)
     a_before_[3 * i] = p.ax[i], a_before_[3 * i + 1] = p.ay[i], a_before_[3 * i + 2] = p.az[i];
+  drainable_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    drainable_[i] = m_.materials[p.material[i]].kind == MaterialModel::Kind::water ? 1 : 0;
   surface_contact(*surface, surface_params_, n, p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(),
                   p.vz.data(), p.mass.data(), dt, p.ax.data(), p.ay.data(), p.az.data(), surface_loads_,
-                  &friction_history_, p.id.data());
+                  &friction_history_, p.id.data(), drainable_.data());
   // The force of the surface on each particle, held over the next window (its
   // sub-steps and the work it does in their kicks), and its total (momentum
   // exchanged with the owner).
@@ -564,18 +576,41 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   }
   surface_force_[0] = fx, surface_force_[1] = fy, surface_force_[2] = fz;
   surface_held_ = true;
+  if (!surface_loads_.drained.empty()) drain(surface_loads_.drained);
+}
+
+// Removes the drained particles (ascending indices) from the flow: their mass
+// leaves the terrain and their kinetic energy the balance; ghosts and lists are
+// made anew for the particles that stay.
+void Solver::drain(const std::vector<std::uint32_t>& drained) {
+  Particles& p = m_.particles;
+  std::vector<std::uint32_t> keep;
+  keep.reserve(p.n_real - drained.size());
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < p.n_real; ++i) {
+    if (next < drained.size() && drained[next] == i) {
+      energy_.drained_kinetic += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+      drained_mass_kg_ += p.mass[i];
+      ++next;
+      continue;
+    }
+    keep.push_back(static_cast<std::uint32_t>(i));
+  }
+  drained_particles_ += drained.size();
+  p.resize(p.n_real);
+  p.permute_real(keep);
+  p.n_real = keep.size();
+  p.resize(p.n_real);
+  rebuild_if_needed(true);
 }
 
 void Solver::prepare() {
   Particles& p = m_.particles;
   prepared_ = true;
   w_dx_ = m_.kernel.value(m_.settings.spacing);
-  any_artificial_stress_ = false;
   any_water_ = false;
   for (const auto& mat : m_.materials) any_water_ = any_water_ || mat.kind == MaterialModel::Kind::water;
-  if (m_.settings.artificial_stress_epsilon > 0)
-    for (const auto& mat : m_.materials)
-      if (mat.kind == MaterialModel::Kind::snow) any_artificial_stress_ = true;
+  any_artificial_stress_ = m_.settings.artificial_stress_epsilon > 0;
   rebuild_if_needed(true);
   const std::size_t n = p.n_real;
   for (auto* v : {&lxx_, &lxy_, &lxz_, &lyx_, &lyy_, &lyz_, &lzx_, &lzy_, &lzz_, &stress_power_,
@@ -859,6 +894,16 @@ void Solver::complete_step() {
   const Particles& p = m_.particles;
   const double dt = step_dt_;
   update_energy(dt);
+  if (any_water_) {
+    // Spray that has left the open-top box: the walls are planes that go on
+    // above the box, and a splash falling back along one of them is not a flow
+    // the box models (docs/water.md, "Films thinner than a particle").
+    std::vector<std::uint32_t> spray;
+    for (std::size_t i = 0; i < p.n_real; ++i)
+      if (p.z[i] > m_.container_max[2] && m_.materials[p.material[i]].kind == MaterialModel::Kind::water)
+        spray.push_back(static_cast<std::uint32_t>(i));
+    if (!spray.empty()) drain(spray);
+  }
   if (domain_) {
     for (std::uint32_t i : force_list_) interactions_ += p.neighbour_count[i];
     if (last_surface_) update_activity(last_surface_);  // no surface: the run has ended

@@ -133,6 +133,7 @@ struct Contact {
 };
 struct ParticleContacts {
   int count = 0;
+  bool drained = false;
   Contact c[kMaxContacts];
 };
 
@@ -251,7 +252,8 @@ double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N
 void surface_contact(const ContactSurface& s, const SurfaceContactParameters& params, std::size_t n_particles,
                      const double* x, const double* y, const double* z, const double* vx, const double* vy,
                      const double* vz, const double* mass, double dt, double* ax, double* ay, double* az,
-                     SurfaceContactResult& loads, FrictionHistory* history, const std::uint32_t* particle_id) {
+                     SurfaceContactResult& loads, FrictionHistory* history, const std::uint32_t* particle_id,
+                     const std::uint8_t* drainable) {
   const std::size_t nn = s.x.size(), nf = s.facet_count();
   if (s.facet_nodes.size() != 4 * nf || s.friction_coefficient.size() != nf || s.y.size() != nn ||
       s.z.size() != nn || s.vx.size() != nn || s.vy.size() != nn || s.vz.size() != nn ||
@@ -292,8 +294,23 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
   static thread_local std::vector<ParticleContacts> buffer;
   if (buffer.size() < n_particles) buffer.resize(n_particles);
   std::vector<ParticleContacts>& contacts = buffer;
+  // The film between a facet (contact direction n, the particle at `gap` from
+  // it along n) and each wall it faces, along the wall's normal through the
+  // particle: the particle's distance to the wall plus the gap's projection.
+  constexpr double kFacingCos = 0.70710678118;  // cos 45 deg
+  const bool can_drain = drainable && params.drain_film_m > 0 && !params.walls.empty();
+  auto pinched = [&](const V3& p, const V3& n, double gap) {
+    for (const SurfaceContactParameters::Wall& w : params.walls) {
+      const double facing = -w.inside_sign * n[w.axis];
+      if (facing < kFacingCos) continue;
+      const double to_wall = w.inside_sign * (p[w.axis] - w.position_m);
+      if (to_wall + gap / facing < params.drain_film_m) return true;
+    }
+    return false;
+  };
   cosim::parallel_for("sph.surface_contact", n_particles, [&](std::size_t i) {
     contacts[i].count = 0;
+    contacts[i].drained = false;
     const V3 p(x[i], y[i], z[i]);
     int cell_ijk[3];
     if (!grid.cell_of(p, cell_ijk)) return;
@@ -457,6 +474,21 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     // both near a gentle convex edge is pushed once, by the deeper (then the
     // lower-numbered) facet. Facets at larger angles (a groove's floor and
     // wall) both push.
+    const bool edge = face_count == 0 && best_facet >= 0 && best < radius * radius;
+    if (can_drain && drainable[i]) {
+      bool squeezed = false;
+      for (int a = 0; a < face_count && !squeezed; ++a)
+        squeezed = pinched(p, normal[faces[a].facet], radius - faces[a].delta);
+      if (edge && !squeezed) {
+        const V3 offset = p - best_point;
+        const double distance = std::sqrt(best);
+        if (distance > 1e-12) squeezed = pinched(p, V3(offset / distance), distance);
+      }
+      if (squeezed) {
+        pc.drained = true;
+        return;
+      }
+    }
     for (int a = 0; a < face_count; ++a) {
       bool keep = true;
       for (int b = 0; b < face_count && keep; ++b) {
@@ -468,7 +500,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     // Edge and corner contact (a convex ridge, e.g. a block's edge): no face
     // holds the particle's projection; the closest point pushes it away from
     // itself, along the line from that point to the particle.
-    if (face_count == 0 && best_facet >= 0 && best < radius * radius) {
+    if (edge) {
       const V3 offset = p - best_point;
       const double distance = std::sqrt(best);
       if (offset.dot(normal[best_facet]) > 0 && distance > 1e-12)
@@ -482,6 +514,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
 
   // Serial sums in particle order: the reaction on the facet nodes and facets.
   for (std::size_t i = 0; i < n_particles; ++i) {
+    if (contacts[i].drained) loads.drained.push_back(static_cast<std::uint32_t>(i));
     for (int k2 = 0; k2 < contacts[i].count; ++k2) {
       const Contact& ct = contacts[i].c[k2];
       const std::uint32_t* q = &s.facet_nodes[4 * ct.facet];

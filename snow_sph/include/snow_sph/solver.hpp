@@ -34,12 +34,15 @@ struct EnergyBalance {
                                      // the coupled surface, the resting (inactive) terrain
   // Kinetic energy of particles that left the active domain (set at rest there).
   double deactivated_kinetic = 0.0;
+  // Kinetic energy of water particles drained from a film they cannot resolve
+  // (surface_contact.hpp, SurfaceContactParameters::drain_film_m).
+  double drained_kinetic = 0.0;
   double initial_total = 0.0;
   // Abaqus-style balance: KE + IE + VD + FD + contact - W, relative to the
   // largest of KE, IE, W.
   double total() const {
     return kinetic + internal + viscous_dissipation + contact_dissipation + contact_elastic +
-           deactivated_kinetic - external_work;
+           deactivated_kinetic + drained_kinetic - external_work;
   }
   double relative_error() const;
 };
@@ -86,6 +89,9 @@ class Solver {
   double held_load_limit_dt() const { return held_load_limit_dt_; }
   std::size_t active_particles() const { return force_list_.size(); }
   double mean_active_share() const { return active_samples_ ? active_share_sum_ / active_samples_ : 1.0; }
+  // Water particles drained so far from films thinner than they resolve, and their mass.
+  std::size_t drained_particles() const { return drained_particles_; }
+  double drained_mass_kg() const { return drained_mass_kg_; }
 
   // Computes the initial stress state, sound speeds and accelerations, so that
   // stability_limit_dt() is that of the first step (a coupled terrain proposes
@@ -146,6 +152,7 @@ class Solver {
   // Active domain: which particles are computed and moved next step.
   void update_activity(const ContactSurface* surface);
   void rebuild_lists();
+  void drain(const std::vector<std::uint32_t>& drained);
   template <class Body> void for_active(const char* label, Body&& body);
 
   Model& m_;
@@ -182,6 +189,9 @@ class Solver {
   double surface_force_[3] = {0, 0, 0};    // on the particles, last exchange
   double surface_impulse_[3] = {0, 0, 0};  // committed windows
   double window_surface_kick_ = 0.0;       // the surface force's kicks since the last exchange [s]
+  std::vector<std::uint8_t> drainable_;   // per real particle: 1 for water
+  std::size_t drained_particles_ = 0;
+  double drained_mass_kg_ = 0.0;
   double window_dt_ = 0.0;                 // the last window advance() took
   std::uint64_t substepped_windows_ = 0;
   std::uint32_t most_substeps_ = 1;

@@ -86,6 +86,10 @@ struct SurfaceContactResult {
   // corner point), before the force's cap at one radius; 0 without contact.
   // Above the radius a particle's centre has crossed the surface.
   double max_penetration_m = 0;
+  // Particles drained this call (indices, ascending): pinched against a wall
+  // below the film they can resolve (SurfaceContactParameters::drain_film_m).
+  // They got no contact force; the caller removes them.
+  std::vector<std::uint32_t> drained;
 };
 
 // The sparse loads that go back to the surface's owner: the nodes and facets of
@@ -99,6 +103,19 @@ struct SurfaceContactParameters {
   double damping_ratio = 0.2;    // of critical, sqrt(k m): normal (only while approaching) and tangential
   double tangential_stiffness_ratio = 1.0;  // k_t / k of the elastic stick
   double max_depth_m = 0;        // particles deeper than this behind a facet are ignored (0: 2 radius)
+  // A film thinner than a particle cannot be resolved by particles: a drainable
+  // particle that a facet facing one of `walls` (within 45 degrees) presses
+  // into a gap thinner than `drain_film_m` between the facet and the wall,
+  // measured along the wall's normal through the particle, has been squeezed
+  // out of the resolved flow. It gets no contact force and is listed in
+  // SurfaceContactResult::drained (0: nothing drains).
+  struct Wall {
+    int axis = 2;            // 0, 1, 2: x, y, z
+    double position_m = 0;   // the plane's coordinate along the axis
+    int inside_sign = 1;     // +1: the terrain lies at larger coordinates
+  };
+  std::vector<Wall> walls;
+  double drain_film_m = 0;
 };
 
 // For every particle i < n_particles, its contacts with the facets near it:
@@ -131,7 +148,8 @@ void surface_contact(const ContactSurface& surface, const SurfaceContactParamete
                      std::size_t n_particles, const double* x, const double* y, const double* z,
                      const double* vx, const double* vy, const double* vz, const double* mass,
                      double dt, double* ax, double* ay, double* az, SurfaceContactResult& loads,
-                     FrictionHistory* history = nullptr, const std::uint32_t* particle_id = nullptr);
+                     FrictionHistory* history = nullptr, const std::uint32_t* particle_id = nullptr,
+                     const std::uint8_t* drainable = nullptr);
 
 // Central-difference limit of a penalty spring on the lightest particle: 2 sqrt(m / k).
 double surface_contact_stable_dt(double min_particle_mass_kg, double stiffness_N_per_m);
