@@ -250,12 +250,14 @@ void gather_pass(const StudyPlan& plan, const scene::StudyPass& pass, const std:
       const auto eq = p.find('=');
       row.parameters[p.substr(0, eq)] = p.substr(eq + 1);
     }
-    for (const auto& f : s.extra_result_fields())  // named columns: COLUMN=PATH
-      if (const auto eq = f.find('='); eq != std::string::npos) {
+    std::vector<std::string> fields(s.extra_result_fields().begin(), s.extra_result_fields().end());
+    fields.push_back(s.result_field());
+    for (const auto& f : fields)  // named columns: COLUMN=PATH
+      if (field_column(f) != f) {
         // A run without the result leaves the column to a result of that name, if any
         // (a tyre on the road has its spin_rate_rad_per_s at the top, not under "tyre").
-        const double v = row_number(row, f.substr(eq + 1));
-        if (!std::isnan(v)) row.computed[f.substr(0, eq)] = v;
+        const double v = row_number(row, field_path(f));
+        if (!std::isnan(v)) row.computed[field_column(f)] = v;
       }
     rows.push_back(std::move(row));
   }
@@ -305,7 +307,7 @@ void run_pass(const StudyPlan& plan, const scene::StudyPass& pass, const StudyRe
       summaries[c] = nlohmann::json::parse(read_file(run.out_dir + "/summary.json"));
     }
     // A case of another kind (a tyre on the road in a study on snow) may lack it: its row leaves it empty.
-    if (!result_at(summaries[c]["results"], s.result_field()))
+    if (!result_at(summaries[c]["results"], field_path(s.result_field())))
       std::fprintf(stderr, "cosim study: %scase '%s' has no result '%s' (result_field): its row leaves it empty\n",
                    prefix.c_str(), k.label().c_str(), s.result_field().c_str());
   }

@@ -43,13 +43,10 @@ std::vector<std::string> pass_names(const scene::Study& s) {
   return names;
 }
 
-// The table column of an extra result field: COLUMN of COLUMN=PATH, else the path.
-std::string column_of(const std::string& extra) { return extra.substr(0, extra.find('=')); }
-
 // The table columns of the study's result and extra results.
 std::vector<std::string> reported_quantities(const scene::Study& s) {
-  std::vector<std::string> quantities{s.result_field()};
-  for (const auto& f : s.extra_result_fields()) quantities.push_back(column_of(f));
+  std::vector<std::string> quantities{field_column(s.result_field())};
+  for (const auto& f : s.extra_result_fields()) quantities.push_back(field_column(f));
   return quantities;
 }
 
@@ -84,7 +81,7 @@ double reference_for(const scene::Study& s, const std::vector<StudyRow>& rows, c
   if (!s.compare_with_last_case()) return s.reference_value() != 0 ? s.reference_value() : kNaN;
   const std::string last = s.cases_size() ? s.cases(s.cases_size() - 1).label() : "";
   for (const auto& r : rows)
-    if (r.pass == pass && r.label == last) return row_number(r, s.result_field());
+    if (r.pass == pass && r.label == last) return row_number(r, field_column(s.result_field()));
   return kNaN;
 }
 
@@ -96,8 +93,8 @@ void write_table(const StudyOutputs& o, const std::vector<StudyRow>& rows, const
   if (s.passes_size()) table << ",pass";
   for (const auto& p : params) table << "," << p;
   if (with_slip) table << ",slip_ratio";
-  table << ",particle_spacing_m,size,time_step_s,steps,wall_time_s," << s.result_field() << ",reference,relative_error";
-  for (const auto& f : s.extra_result_fields()) table << "," << column_of(f);
+  table << ",particle_spacing_m,size,time_step_s,steps,wall_time_s," << field_column(s.result_field()) << ",reference,relative_error";
+  for (const auto& f : s.extra_result_fields()) table << "," << field_column(f);
   table << "\n";
   for (const auto& r : rows) {
     const auto& summary = r.summary;
@@ -105,7 +102,7 @@ void write_table(const StudyOutputs& o, const std::vector<StudyRow>& rows, const
     const nlohmann::json size = summary.contains("particles") ? summary["particles"] : summary.value("elements", nlohmann::json());
     nlohmann::json dt = summary.value("dt_s", nlohmann::json());
     if (dt.is_object()) dt = dt.value("mean", nlohmann::json());
-    const double value = row_number(r, s.result_field());
+    const double value = row_number(r, field_column(s.result_field()));
     const double reference = reference_for(s, rows, r.pass);
     table << field(r.label);
     if (s.passes_size()) table << "," << r.pass;
@@ -119,7 +116,7 @@ void write_table(const StudyOutputs& o, const std::vector<StudyRow>& rows, const
       const nlohmann::json* v = summary.contains("results") ? result_at(summary["results"], f) : nullptr;
       // A named column, or a result the study recomputed (Study.f5_radius), is the row's number.
       const bool computed = f.find('=') != std::string::npos || r.computed.count(f);
-      table << "," << (computed ? num(row_number(r, column_of(f))) : v ? json_num(*v) : "");
+      table << "," << (computed ? num(row_number(r, field_column(f))) : v ? json_num(*v) : "");
     }
     table << "\n";
   }
@@ -143,7 +140,7 @@ void write_error_vs_runtime(const StudyOutputs& o, const std::vector<StudyRow>& 
       const double v = row_number(r, q);
       double ref = kNaN;
       if (passes.size() > 1) ref = finest ? row_number(*finest, q) : kNaN;
-      else if (q == s.result_field()) ref = reference_for(s, rows, r.pass);
+      else if (q == field_column(s.result_field())) ref = reference_for(s, rows, r.pass);
       const double error = ref != 0 && !std::isnan(ref) ? (v - ref) / std::fabs(ref) : kNaN;
       out << field(r.label) << "," << q << "," << r.pass << "," << num(v) << "," << num(row_number(r, "wall_time_s"))
           << "," << (passes.size() > 1 ? passes.back() + (finest ? "" : " (not run)") : "reference") << ","
@@ -161,7 +158,7 @@ std::string plot_error_vs_runtime(const StudyOutputs& o, const std::vector<Study
     out << "wall_time_s,abs_error_percent,case\n";
     for (const auto& r : rows) {
       const double ref = reference_for(s, rows, r.pass);
-      const double v = row_number(r, s.result_field());
+      const double v = row_number(r, field_column(s.result_field()));
       if (ref == 0 || std::isnan(ref) || std::isnan(v)) continue;
       out << num(row_number(r, "wall_time_s")) << "," << num(100 * std::fabs((v - ref) / ref)) << ","
           << field(r.pass.empty() ? r.label : r.pass + "/" + r.label) << "\n";
@@ -169,7 +166,7 @@ std::string plot_error_vs_runtime(const StudyOutputs& o, const std::vector<Study
   }
   PlotOptions p;
   p.title = s.name() + ": error against run time", p.x_label = "wall time [s]";
-  p.y_label = "|error| in " + s.result_field() + " [%]";
+  p.y_label = "|error| in " + field_column(s.result_field()) + " [%]";
   p.log_x = true, p.key = false;
   p.extra_commands = "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.1\n";
   const std::string png = o.out_dir + "/error_vs_runtime.png";
@@ -395,10 +392,10 @@ void write_study_outputs(const StudyOutputs& o, const std::vector<StudyRow>& row
     if (!r.pass.empty()) row["pass"] = r.pass;
     for (const auto& [k, v] : r.parameters) row[k] = v;
     for (const auto& [k, v] : r.computed) row[k] = v;
-    row[s.result_field()] = row_number(r, s.result_field());
+    row[field_column(s.result_field())] = row_number(r, field_column(s.result_field()));
     for (const auto& f : s.extra_result_fields()) {
-      const double v = row_number(r, column_of(f));
-      row[column_of(f)] = std::isnan(v) ? nlohmann::json() : nlohmann::json(v);
+      const double v = row_number(r, field_column(f));
+      row[field_column(f)] = std::isnan(v) ? nlohmann::json() : nlohmann::json(v);
     }
     runs.push_back(row);
   }

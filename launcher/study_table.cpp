@@ -75,6 +75,13 @@ std::string group_name(const StudyRow& row, const std::string& column) {
 
 }  // namespace
 
+std::string field_column(const std::string& field) { return field.substr(0, field.find('=')); }
+
+std::string field_path(const std::string& field) {
+  const auto eq = field.find('=');
+  return eq == std::string::npos ? field : field.substr(eq + 1);
+}
+
 double row_number(const StudyRow& row, const std::string& quantity) {
   // "A-B" / "A+B": split at the last operator that is not part of a number's exponent.
   for (std::size_t i = quantity.size(); i-- > 1;) {

@@ -24,6 +24,11 @@ struct StudyRow {
 // run's wall_time_s, a result (dotted path into "results"), or "A-B" / "A+B"
 // of two of those. NaN when absent or not a number.
 double row_number(const StudyRow& row, const std::string& quantity);
+
+// A result field of a study file, "COLUMN=PATH" or a plain PATH: the table's
+// column, and the result's path in the run's summary.
+std::string field_column(const std::string& field);
+std::string field_path(const std::string& field);
 // A parameter's text, else the number's ("%.6g"), else "".
 std::string row_text(const StudyRow& row, const std::string& column);
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -112,8 +113,13 @@ TEST(Launcher, StudyWritesTableAndPlot) {
   std::ifstream table(dir + "/table.csv");
   std::string header, row1, row2;
   std::getline(table, header), std::getline(table, row1), std::getline(table, row2);
-  EXPECT_EQ(header, "case,particle_spacing_m,size,time_step_s,steps,wall_time_s,final_front_m,reference,relative_error");
+  EXPECT_EQ(header, "case,particle_spacing_m,size,time_step_s,steps,wall_time_s,front_m,reference,relative_error");
   EXPECT_EQ(row1.rfind("coarse,0.0057,", 0), 0u) << row1;
+  // The result column holds the run's final_front_m (named front_m by the study file).
+  std::vector<std::string> cells;
+  for (std::stringstream ss(row1); cells.size() < 9 && ss.good();) std::getline(ss, cells.emplace_back(), ',');
+  ASSERT_EQ(cells.size(), 9u) << row1;
+  EXPECT_GT(std::stod(cells[6]), 0.0) << row1;
   EXPECT_EQ(row2.rfind("fine,0.0028575,", 0), 0u) << row2;
   EXPECT_GT(std::filesystem::file_size(dir + "/error_vs_runtime.png"), 1000u);
 }
