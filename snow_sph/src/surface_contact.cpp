@@ -469,11 +469,8 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
         else best_w[0] = w2[0], best_w[1] = 0, best_w[2] = w2[1], best_w[3] = w2[2], best_point = p2;
       }
     }
-    // Neighbouring facets within 5 degrees of each other are one surface: a
-    // particle on their shared edge (inside both, the edge included) or behind
-    // both near a gentle convex edge is pushed once, by the deeper (then the
-    // lower-numbered) facet. Facets at larger angles (a groove's floor and
-    // wall) both push.
+    // A water particle squeezed against a wall below the film it resolves leaves
+    // the flow (SurfaceContactParameters::drain_film_m) instead of being crushed.
     const bool edge = face_count == 0 && best_facet >= 0 && best < radius * radius;
     if (can_drain && drainable[i]) {
       bool squeezed = false;
@@ -482,13 +479,19 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       if (edge && !squeezed) {
         const V3 offset = p - best_point;
         const double distance = std::sqrt(best);
-        if (distance > 1e-12) squeezed = pinched(p, V3(offset / distance), distance);
+        if (offset.dot(normal[best_facet]) > 0 && distance > 1e-12)
+          squeezed = pinched(p, V3(offset / distance), distance);
       }
       if (squeezed) {
         pc.drained = true;
         return;
       }
     }
+    // Neighbouring facets within 5 degrees of each other are one surface: a
+    // particle on their shared edge (inside both, the edge included) or behind
+    // both near a gentle convex edge is pushed once, by the deeper (then the
+    // lower-numbered) facet. Facets at larger angles (a groove's floor and
+    // wall) both push.
     for (int a = 0; a < face_count; ++a) {
       bool keep = true;
       for (int b = 0; b < face_count && keep; ++b) {

@@ -143,6 +143,9 @@ struct SurfaceContactParameters {
 // The force on the particle is added to (ax, ay, az)[i] / mass[i]; the opposite
 // force goes to the facet's nodes with the bilinear shape functions at the
 // contact point (linear along an edge), so momentum is conserved exactly.
+// `drainable` (per particle, 1 for water; null: none) marks the particles that
+// drain from a film thinner than params.drain_film_m against params.walls: they
+// get no contact and are listed in loads.drained.
 // `loads` is overwritten. The result does not depend on the number of OpenMP threads.
 void surface_contact(const ContactSurface& surface, const SurfaceContactParameters& params,
                      std::size_t n_particles, const double* x, const double* y, const double* z,
