@@ -419,9 +419,11 @@ TEST(CoupledRun, ABlockSlidingIntoAWaterFilmPushesItAheadAndKeepsItsFrictionWith
 // afford it: at rest the water's stiffness does not enter the balance). At rest
 // still water can carry no more than its buoyancy on the tyre, rho g V with V at
 // most the layer's depth times the plan area the tyre covers (0.02 m x 0.25 m x
-// 0.3 m: 15 N), so the road carries the load. Bounds: the loading ends after
-// 0.08 s of damped relaxation, not at rest: the rim's balance (road + water =
-// load) is checked to 2 % (the loading stage's own rest tolerance), the water's
+// 0.3 m: 15 N), so the road carries the load. The loading runs until the tyre
+// is at rest (road force within 2 % of the load, kinetic energy below 2 % of
+// the internal; at most 0.3 s; measured 0.24 s: the water under the tread drains
+// as the tyre lands, and it lands late and overshoots, 4.8 kN at 0.067 s). Bounds:
+// the rim's balance (road + water = load) to 2 % (the rest tolerance), the water's
 // share below 2 % of the load (about ten times its buoyancy, for the squeeze flow
 // still under way). The exchange balances momentum as on snow.
 TEST(CoupledRun, ARoadUnderTheWaterCarriesTheTyre) {
@@ -435,12 +437,13 @@ TEST(CoupledRun, ARoadUnderTheWaterCarriesTheTyre) {
       " --set sph.blocks[0].region.max.x=0.2 --set sph.blocks[0].region.min.y=-0.2 --set sph.blocks[0].region.max.y=0.2"
       " --set sph.blocks[0].region.min.z=-0.02 --set sph.blocks[0].material.material_file=../materials/water.textproto"
       " --set sph.blocks[0].material.water.sound_speed_override_m_per_s=50"
-      " --set tyre.stages.loading_s=0.08 --set tyre.stages.loading_rest_tolerance=0");
+      " --set tyre.stages.loading_s=0.3 --set tyre.stages.loading_rest_tolerance=0.02");
   ASSERT_EQ(code, 0) << out;
   const SceneRun run = read_run(dir);
   const auto& tyre = run.tyre["results"];
   const double load = 4000.0;
   const double road = tyre["road_vertical_force_N"].get<double>(), water = tyre["terrain_vertical_force_N"].get<double>();
+  EXPECT_TRUE(tyre["loading_came_to_rest"].get<bool>());
   EXPECT_NEAR(road + water, load, 0.02 * load) << "road " << road << " N, water " << water << " N";
   EXPECT_LT(std::fabs(water), 0.02 * load) << "water " << water << " N";
   EXPECT_GT(tyre["road_contact_area_m2"].get<double>(), 0.0);
