@@ -334,6 +334,18 @@ TEST(CoupledRun, TreadBlockLeavesARutWithoutPenetrationAndBalancesMomentum) {
   expect_momentum_balance_of(run, 0.01);
 }
 
+// The coarse sliding block of the suite (5 mm elements, 0.5 mm particles, the
+// face starting on the film's top, 10 ms of hold, a 20 ms speed ramp, 40 ms of
+// slide averaged over its last 15 ms); `film` places the water.
+std::pair<int, std::string> run_block_slide(const std::string& dir, int domain, const std::string& film) {
+  return shell(bin() + "/cosim run " + test_support::scene_path("block_friction") + " --out " + dir +
+               " --dds cyclone --domain " + std::to_string(domain) +
+               " --no-vtk --quiet --set tread_block.element_size_m=0.005 --set sph.particle_spacing_m=0.0005" + film +
+               " --set tread_block.initial_gap_m=0 --set tread_block.hold_s=0.01"
+               " --set tread_block.slide_ramp_time_s=0.02 --set tread_block.slide_s=0.04"
+               " --set tread_block.average_last_s=0.015");
+}
+
 // The sliding block of thesis 4.3 on the bare road (its water film a small patch
 // out of its way, so that the slide is the block's and the road's alone): the
 // holder pulls it at 0.5 m/s under 300 N. Coarse: 5 mm elements. The face starts
@@ -348,14 +360,11 @@ TEST(CoupledRun, TreadBlockLeavesARutWithoutPenetrationAndBalancesMomentum) {
 //   the road's mean normal force is the load (measured 0.2 %, bound 3 %).
 TEST(CoupledRun, ABlockSlidingOnTheBareRoadMeetsCoulombAndBalancesItsPull) {
   const auto dir = test_support::scratch("block_slide_dry");
-  auto [code, out] = shell(
-      bin() + "/cosim run " + test_support::scene_path("block_friction") + " --out " + dir +
-      " --dds cyclone --domain 16 --no-vtk --quiet --set tread_block.element_size_m=0.005"
-      " --set sph.particle_spacing_m=0.0005 --set sph.container.min.z=-0.0005 --set sph.container.max.x=0.2"
-      " --set sph.blocks[0].region.min.x=0.15 --set sph.blocks[0].region.max.x=0.17"
-      " --set sph.blocks[0].region.min.y=-0.01 --set sph.blocks[0].region.max.y=0.01"
-      " --set sph.blocks[0].region.min.z=-0.0005 --set tread_block.initial_gap_m=0 --set tread_block.hold_s=0.01"
-      " --set tread_block.slide_ramp_time_s=0.02 --set tread_block.slide_s=0.04 --set tread_block.average_last_s=0.015");
+  auto [code, out] = run_block_slide(dir, 16,
+                                     " --set sph.container.min.z=-0.0005 --set sph.container.max.x=0.2"
+                                     " --set sph.blocks[0].region.min.x=0.15 --set sph.blocks[0].region.max.x=0.17"
+                                     " --set sph.blocks[0].region.min.y=-0.01 --set sph.blocks[0].region.max.y=0.01"
+                                     " --set sph.blocks[0].region.min.z=-0.0005");
   ASSERT_EQ(code, 0) << out;
   const SceneRun run = read_run(dir);
   const auto& block = run.tyre["results"];
@@ -390,14 +399,11 @@ TEST(CoupledRun, ABlockSlidingOnTheBareRoadMeetsCoulombAndBalancesItsPull) {
 // crushed between the face and the road (k r = 0.45 N at c = 60 m/s).
 TEST(CoupledRun, ABlockSlidingIntoAWaterFilmPushesItAheadAndKeepsItsFrictionWithinCoulomb) {
   const auto dir = test_support::scratch("block_slide_film");
-  auto [code, out] = shell(
-      bin() + "/cosim run " + test_support::scene_path("block_friction") + " --out " + dir +
-      " --dds cyclone --domain 17 --no-vtk --quiet --set tread_block.element_size_m=0.005"
-      " --set sph.particle_spacing_m=0.0005 --set sph.container.min.z=-0.001 --set sph.container.max.x=0.08"
-      " --set sph.blocks[0].region.min.x=0.03 --set sph.blocks[0].region.max.x=0.06"
-      " --set sph.blocks[0].region.min.y=-0.015 --set sph.blocks[0].region.max.y=0.015"
-      " --set sph.blocks[0].region.min.z=-0.001 --set tread_block.initial_gap_m=0 --set tread_block.hold_s=0.01"
-      " --set tread_block.slide_ramp_time_s=0.02 --set tread_block.slide_s=0.04 --set tread_block.average_last_s=0.015");
+  auto [code, out] = run_block_slide(dir, 17,
+                                     " --set sph.container.min.z=-0.001 --set sph.container.max.x=0.08"
+                                     " --set sph.blocks[0].region.min.x=0.03 --set sph.blocks[0].region.max.x=0.06"
+                                     " --set sph.blocks[0].region.min.y=-0.015 --set sph.blocks[0].region.max.y=0.015"
+                                     " --set sph.blocks[0].region.min.z=-0.001");
   ASSERT_EQ(code, 0) << out;
   const SceneRun run = read_run(dir);
   const auto& block = run.tyre["results"];
