@@ -47,6 +47,9 @@ int run_scene_processes(const RunRequest& request) {
   const auto scene = load_scene(request.scene_file, request.sets);
   check_scene(*scene);
   const auto programs = participants(scene->message);
+  if (request.restart && programs.size() > 1)
+    throw Error(request.scene_file + ": --restart continues runs of one program (the terrain or the tyre on its "
+                "own) so far; this scene runs coupled (docs/reliability.md)");
   if (programs.size() > 1) return run_coupled(request, *scene);
   const char* why = programs.front() == "tyre_fe" ? "(tyre on a rigid road: no SPH, no DDS)"
                                                   : "(no tyre, no DDS)";
@@ -56,6 +59,7 @@ int run_scene_processes(const RunRequest& request) {
   for (const auto& s : request.sets) args.insert(args.end(), {"--set", s});
   if (request.quiet) args.push_back("--quiet");
   if (request.no_vtk) args.push_back("--no-vtk");
+  if (request.restart) args.push_back("--restart");
   if (request.mesh_only) {
     if (programs.front() != "tyre_fe") throw Error("--mesh-only applies to tyre scenes");
     args.push_back("--mesh-only");

@@ -22,6 +22,7 @@ struct RunRequest {
   bool quiet = false;
   bool no_vtk = false;
   bool mesh_only = false;  // tyre scenes: write the meshes only
+  bool restart = false;    // continue the run in out_dir from its newest checkpoint
   // Coupled scenes: DDS vendor per process ("fast", "cyclone" or
   // "tyre=fast,terrain=cyclone,coupler=cyclone") and domain (-1: the scene's).
   std::string dds = "cyclone";

@@ -4,8 +4,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
 #include <string>
 #include <utility>
+
+#include "cosim/error.hpp"
 
 #include <sys/wait.h>
 
@@ -44,6 +49,24 @@ inline std::pair<int, std::string> shell(const std::string& command) {
   while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
   const int status = pclose(pipe);
   return {WEXITSTATUS(status), output};
+}
+
+// A file's bytes ("" if it cannot be read).
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The message of the cosim::Error that f throws ("" if it throws none).
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const cosim::Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace test_support

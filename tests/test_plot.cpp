@@ -20,12 +20,7 @@ namespace {
 
 bool gnuplot_present() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::read_file;
 
 std::uint32_t be32(const std::string& s, std::size_t at) {
   std::uint32_t v = 0;

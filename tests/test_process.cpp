@@ -15,12 +15,7 @@
 
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::read_file;
 
 TEST(Process, ExitCodeAndBothStreamsInOneFile) {
   const std::string dir = test_support::scratch("process_one_file");

@@ -7,6 +7,7 @@
 #include "cosim_transport/config.hpp"
 #include "cosim_transport/sample_filter.hpp"
 #include "cosim_transport/transport.hpp"
+#include "test_paths.hpp"
 #include "transport_test_support.hpp"
 
 namespace {
@@ -14,14 +15,7 @@ namespace {
 using namespace cosim::transport;
 using test_support::loopback;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const cosim::Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::error_of;
 
 TEST(TransportOptions, ParsesVendorNames) {
   for (Vendor v : available_vendors()) EXPECT_EQ(parse_vendor(vendor_name(v)), v);

@@ -55,12 +55,7 @@ void wait_all(std::vector<Child*> children, std::chrono::seconds timeout) {
   }
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::read_file;
 
 class TwoProcesses : public testing::TestWithParam<VendorPair> {};
 

@@ -36,12 +36,7 @@ std::string b(std::initializer_list<int> bytes) {
   return s;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::read_file;
 
 TEST(Vtk, BigEndianEncodersMatchIeee754BitPatterns) {
   std::string out;

@@ -32,9 +32,14 @@ void write_json(const std::string& path, const nlohmann::json& value) {
     throw Error(path + ": cannot rename from " + tmp + ": " + std::strerror(errno));
 }
 
-CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
-    : path_(path), columns_(columns.size()), out_(path), last_flush_(std::chrono::steady_clock::now()) {
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns, bool resume)
+    : path_(path), columns_(columns.size()), last_flush_(std::chrono::steady_clock::now()) {
+  if (resume && !std::filesystem::exists(path))
+    throw Error(path + ": the series of the run being restarted is missing");
+  out_.open(path, resume ? std::ios::app : std::ios::trunc);
   if (!out_) throw Error(path + ": cannot write: " + std::strerror(errno));
+  muted_ = resume;
+  if (resume) return;
   for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
   out_ << "\n";
   out_.flush();
@@ -46,6 +51,7 @@ void CsvWriter::row(const std::vector<double>& values) {
   if (values.size() != columns_)
     throw Error(path_ + ": row has " + std::to_string(values.size()) + " values, header has " +
                 std::to_string(columns_));
+  if (muted_) return;
   char buffer[64];
   for (std::size_t i = 0; i < values.size(); ++i) {
     std::snprintf(buffer, sizeof buffer, "%.10g", values[i]);
@@ -59,6 +65,25 @@ void CsvWriter::row(const std::vector<double>& values) {
 void CsvWriter::flush() {
   out_.flush();
   last_flush_ = std::chrono::steady_clock::now();
+}
+
+std::uint64_t CsvWriter::length() {
+  flush();
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path_, ec);
+  if (ec) throw Error(path_ + ": cannot read its length: " + ec.message());
+  return bytes;
+}
+
+void CsvWriter::truncate(std::uint64_t bytes) {
+  // Opened to append (O_APPEND): after the cut, rows go on at the new end.
+  flush();
+  std::error_code ec;
+  if (std::filesystem::file_size(path_, ec) < bytes || ec)
+    throw Error(path_ + ": shorter than at the checkpoint (" + std::to_string(bytes) + " bytes); cannot continue it");
+  std::filesystem::resize_file(path_, bytes, ec);
+  if (ec) throw Error(path_ + ": cannot cut it back to the checkpoint: " + ec.message());
+  muted_ = false;
 }
 
 VtkSeries::VtkSeries(std::string folder, std::string name) : series_(std::move(folder), std::move(name)) {}

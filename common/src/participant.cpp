@@ -1,6 +1,8 @@
 #include "cosim/participant.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 
 #include "cosim/error.hpp"
 #include "cosim/interrupt.hpp"
@@ -15,10 +17,53 @@ double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// The first multiple of the interval after t (the same in a run and in its restart).
+double next_checkpoint_after(double t, double interval) {
+  return (std::floor(t / interval * (1.0 + 1e-12)) + 1.0) * interval;
+}
+
+void write_checkpoint(Participant& p, RunRecord& record) {
+  CheckpointWriter out(record.program(), record.scene_hash(), p.steps(), p.time_s());
+  record.save(out);
+  p.save(out);
+  out.commit(checkpoint_path(record.out_dir(), record.program(), p.steps()));
+  // Two: if the newest were damaged on disk, the one before still restarts the run.
+  prune_checkpoints(record.out_dir(), record.program(), 2);
+}
+
+// The newest checkpoint of this program that can be read (an older one if the
+// newest is damaged); one of another scene is refused. Chosen before the run
+// starts, so that a refused restart leaves the stopped run's files as they were.
+std::unique_ptr<CheckpointReader> newest_checkpoint(const Participant& p, const RunRecord& record) {
+  const std::string& program = record.program();
+  if (!p.can_checkpoint()) throw Error(program + ": this scene's run cannot be restarted (no checkpoints)");
+  const auto files = list_checkpoints(record.out_dir(), program);
+  if (files.empty())
+    throw Error(record.out_dir() + "/checkpoints: no checkpoint of " + program + " to restart from");
+  for (auto it = files.rbegin(); it != files.rend(); ++it) {
+    std::unique_ptr<CheckpointReader> in;
+    try {
+      in = std::make_unique<CheckpointReader>(it->path);
+    } catch (const Error& e) {
+      if (std::next(it) == files.rend()) throw;
+      std::fprintf(stderr, "%s: %s; restarting from the one before\n", program.c_str(), e.what());
+      continue;
+    }
+    in->expect(program, record.scene_hash());
+    return in;
+  }
+  return nullptr;  // not reached: the loop returns or throws
+}
+
 }  // namespace
 
-RunRecord::RunRecord(const LoadedScene& loaded, std::string out_dir, const std::string& program)
-    : out_dir_(std::move(out_dir)), start_s_(now_s()) {
+RunRecord::RunRecord(const LoadedScene& loaded, std::string out_dir, const std::string& program, bool restart)
+    : out_dir_(std::move(out_dir)),
+      program_(program),
+      restart_(restart),
+      scene_hash_(cosim::scene_hash(loaded.message)),
+      checkpoint_interval_s_(loaded.message.output().checkpoint_interval_s()),
+      start_s_(now_s()) {
   references_ = loaded.message.references();
   make_folder(out_dir_);
   nlohmann::json overrides = nlohmann::json::object();
@@ -34,8 +79,34 @@ double RunRecord::wall_s() const { return now_s() - start_s_; }
 CsvWriter& RunRecord::series(const std::string& file, const std::vector<std::string>& columns) {
   if (series_.count(file)) throw Error(path(file) + ": the run opened this series twice");
   auto& slot = series_[file];
-  slot = std::make_unique<CsvWriter>(path(file), columns);
+  slot = std::make_unique<CsvWriter>(path(file), columns, restart_);
   return *slot;
+}
+
+void RunRecord::save(CheckpointWriter& out) {
+  for (auto& [file, csv] : series_)
+    if (csv) out.put_value<std::uint64_t>("record.series." + file, csv->length());
+  out.put_text("record.summary", summary_.dump());
+}
+
+void RunRecord::restore(const CheckpointReader& in) {
+  // What the run had recorded by then (results of the stages it had finished);
+  // this build's revision and thread count stay.
+  nlohmann::json saved = nlohmann::json::parse(in.get_text("record.summary"));
+  for (const char* key : {"revision", "threads"}) saved[key] = summary_[key];
+  summary_ = std::move(saved);
+  const std::string prefix = "record.series.";
+  for (const std::string& name : in.names_with_prefix(prefix)) {
+    const std::string file = name.substr(prefix.size());
+    auto it = series_.find(file);
+    if (it == series_.end() || !it->second)
+      throw Error(in.path() + ": the checkpoint continues series " + file + ", which this run does not write");
+    it->second->truncate(in.get_value<std::uint64_t>(name));
+  }
+  for (auto& [file, csv] : series_)
+    if (csv && !in.has(prefix + file))
+      throw Error(in.path() + ": the checkpoint does not continue series " + file + ", which this run writes");
+  restart_ = false;  // a series opened from here on starts afresh
 }
 
 void RunRecord::flush_series() {
@@ -73,15 +144,34 @@ void RunRecord::write(const std::string& status, double sim_time_s, std::uint64_
 
 nlohmann::json run_participant(Participant& p, RunRecord& record, const std::string& label, bool quiet) {
   bool finalized = false;
+  const auto checkpoint = record.restarting() ? newest_checkpoint(p, record) : nullptr;
   try {
     const double planned_end_s = p.initialize(record);
+    if (checkpoint) {
+      record.restore(*checkpoint);
+      p.restore(*checkpoint);
+      record.summary()["restarted_from"] = {
+          {"checkpoint", checkpoint->path()}, {"step", checkpoint->step()}, {"time_s", checkpoint->time_s()}};
+    }
+    const double interval = p.can_checkpoint() ? record.checkpoint_interval_s() : 0.0;
+    double next_checkpoint_s = interval > 0 ? next_checkpoint_after(p.time_s(), interval) : 0.0;
     Progress progress(label, planned_end_s, quiet);
     while (p.advance()) {
       p.output(record);
       progress.update(p.time_s(), p.steps());
-      if (interrupt_requested())
+      if (interval > 0 && p.time_s() >= next_checkpoint_s) {
+        write_checkpoint(p, record);
+        next_checkpoint_s = next_checkpoint_after(p.time_s(), interval);
+      }
+      if (interrupt_requested()) {
+        std::string kept;
+        if (p.can_checkpoint()) {
+          write_checkpoint(p, record);
+          kept = "; checkpoint written (--restart continues from it)";
+        }
         throw Error("interrupted by a signal at step " + std::to_string(p.steps()) + ", t = " +
-                    number_text(p.time_s()) + " s");
+                    number_text(p.time_s()) + " s" + kept);
+      }
     }
     p.finalize(record);
     finalized = true;

@@ -148,15 +148,36 @@ Series::Series(std::string folder, std::string name) : folder_(std::move(folder)
   make_folder(folder_);
 }
 
-std::string Series::write(double time_s, const LegacyFile& file) {
+std::string Series::file_name(std::size_t frame) const {
   std::ostringstream name;
-  name << name_ << "_" << std::setw(5) << std::setfill('0') << entries_.size() << ".vtk";
-  file.save(folder_ + "/" + name.str());
-  entries_.emplace_back(name.str(), time_s);
+  name << name_ << "_" << std::setw(5) << std::setfill('0') << frame << ".vtk";
+  return name.str();
+}
+
+void Series::write_index() const {
   nlohmann::json files = nlohmann::json::array();
   for (const auto& [n, t] : entries_) files.push_back({{"name", n}, {"time", t}});
   write_json(folder_ + "/" + name_ + ".vtk.series", {{"file-series-version", "1.0"}, {"files", files}});
-  return name.str();
+}
+
+std::string Series::write(double time_s, const LegacyFile& file) {
+  const std::string name = file_name(entries_.size());
+  file.save(folder_ + "/" + name);
+  entries_.emplace_back(name, time_s);
+  write_index();
+  return name;
+}
+
+std::vector<double> Series::times() const {
+  std::vector<double> t;
+  for (const auto& e : entries_) t.push_back(e.second);
+  return t;
+}
+
+void Series::resume(const std::vector<double>& times) {
+  entries_.clear();
+  for (double t : times) entries_.emplace_back(file_name(entries_.size()), t);
+  write_index();
 }
 
 }  // namespace cosim::vtk

@@ -118,6 +118,11 @@ class SphRun final : public cosim::Participant {
     }
   }
   void plots(cosim::RunRecord& record) override;
+  // A terrain on its own; a coupled terrain's checkpoint needs its peers' at the
+  // same exchange (docs/reliability.md).
+  bool can_checkpoint() const override { return port_ == nullptr; }
+  void save(cosim::CheckpointWriter& out) const override;
+  void restore(const cosim::CheckpointReader& in) override;
 
  private:
   // Exchange stage: the surface of exchange n in, its contact with the
@@ -292,6 +297,25 @@ bool SphRun::advance() {
     throw cosim::Error("the solution became non-finite (NaN/Inf) at step " + std::to_string(solver_->steps()) +
                        ", t = " + cosim::number_text(solver_->time()) + " s");
   return true;
+}
+
+void SphRun::save(cosim::CheckpointWriter& out) const {
+  solver_->save(out);
+  out.put("run.doubles", std::vector<double>{dt_min_, dt_max_, dt_sum_, probe_sum_, probe_time_, last_dt_, next_csv_,
+                                             next_vtk_, max_penetration_m_});
+  out.put("run.counters", std::vector<std::uint64_t>{exchange_, windows_, clamped_, stopped_ ? 1u : 0u});
+  out.put("run.vtk_frame_times", vtk_ ? vtk_->frame_times() : std::vector<double>{});
+}
+
+void SphRun::restore(const cosim::CheckpointReader& in) {
+  solver_->restore(in);
+  const auto d = in.get<double>("run.doubles", 9);
+  dt_min_ = d[0], dt_max_ = d[1], dt_sum_ = d[2], probe_sum_ = d[3], probe_time_ = d[4], last_dt_ = d[5];
+  next_csv_ = d[6], next_vtk_ = d[7], max_penetration_m_ = d[8];
+  const auto c = in.get<std::uint64_t>("run.counters", 4);
+  exchange_ = c[0], windows_ = c[1], clamped_ = c[2], stopped_ = c[3] != 0;
+  const auto frames = in.get<double>("run.vtk_frame_times");
+  if (vtk_) vtk_->resume(frames);
 }
 
 void SphRun::track_rest() {
@@ -489,7 +513,7 @@ void SphRun::plots(cosim::RunRecord& record) {
 }  // namespace
 
 nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
-  cosim::RunRecord record(loaded, options.out_dir, "snow_sph");
+  cosim::RunRecord record(loaded, options.out_dir, "snow_sph", options.restart);
   SphRun run(loaded, options);
   return cosim::run_participant(run, record, loaded.message.name(), options.quiet);
 }

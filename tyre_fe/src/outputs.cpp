@@ -73,6 +73,19 @@ void FrameWriter::maybe_write(const Model3d& model, const State3d& s) {
   next_s_ = s.time_s + interval_s_;
 }
 
+void FrameWriter::save(cosim::CheckpointWriter& out) const {
+  out.put("frames.clock", std::vector<double>{next_s_, last_written_s_});
+  out.put("frames.body_times", body_frames_.times());
+  out.put("frames.surface_times", surface_frames_.times());
+}
+
+void FrameWriter::restore(const cosim::CheckpointReader& in) {
+  const auto clock = in.get<double>("frames.clock", 2);
+  next_s_ = clock[0], last_written_s_ = clock[1];
+  body_frames_.resume(in.get<double>("frames.body_times"));
+  surface_frames_.resume(in.get<double>("frames.surface_times"));
+}
+
 void FrameWriter::write(const Model3d& model, const State3d& s) {
   if (interval_s_ <= 0.0 || s.time_s == last_written_s_) return;
   last_written_s_ = s.time_s;

@@ -17,6 +17,7 @@
 #include "tyre_fe/outputs.hpp"
 #include "tyre_fe/scene.hpp"
 #include "tyre_fe/solver3d.hpp"
+#include "tyre_fe/state_checkpoint.hpp"
 #include "tyre_fe/tread_block.hpp"
 
 namespace tyre_fe {
@@ -88,6 +89,11 @@ class TyreRun final : public cosim::Participant {
     }
   }
   std::string end_status() const override { return at_max_steps_ ? "stopped_at_max_steps" : "completed"; }
+  // The tyre on its own road; on a terrain its checkpoint needs its peers' at the
+  // same exchange (docs/reliability.md). A mesh-only run has nothing to continue.
+  bool can_checkpoint() const override { return port_ == nullptr && !options_.mesh_only && !t_.mesh_only(); }
+  void save(cosim::CheckpointWriter& out) const override;
+  void restore(const cosim::CheckpointReader& in) override;
 
  private:
   enum Stage { kTransferCheck, kLoading, kRolling, kDone };
@@ -114,6 +120,16 @@ class TyreRun final : public cosim::Participant {
     return std::string(road_under_terrain() ? "ground_" : port_ ? "terrain_" : "road_") + quantity;
   }
   double ground_area() const { return s_.road.contact_area_m2 + s_.terrain.load_totals.contact_area_m2; }
+
+  // The run's own clocks and sums, in one list shared by save and restore.
+  template <class Run> static auto run_doubles(Run& r) {
+    return std::vector<decltype(&r.next_csv_)>{
+        &r.next_csv_, &r.stage_t0_, &r.stage_t_end_, &r.max_kinetic_, &r.growth_integral_, &r.growth_time_,
+        &r.growth_min_, &r.growth_max_, &r.radius0_, &r.load_, &r.load_ramp_, &r.loading_start_,
+        &r.previous_kinetic_, &r.slow_since_, &r.spin_up_radius_, &r.t_window_, &r.average_window_, &r.x_w_, &r.a_w_,
+        &r.fx_sum_, &r.rim_fx_sum_, &r.m_sum_, &r.fz_sum_, &r.h_sum_, &r.w_sum_, &r.road_fz_sum_, &r.road_area_sum_,
+        &r.trail_sum_, &r.below_since_};
+  }
 
   const cosim::LoadedScene& loaded_;
   const sc::Scene& scene_;
@@ -260,6 +276,39 @@ double TyreRun::initialize(cosim::RunRecord& record) {
   stepping_ = true;
   const auto& st = t_.stages();
   return cosim::planned_end_time_s(scene_);  // transfer check, loading, rolling
+}
+
+void TyreRun::save(cosim::CheckpointWriter& out) const {
+  save_state(s_, out);
+  frames_->save(out);
+  std::vector<double> d;
+  for (const double* v : run_doubles(*this)) d.push_back(*v);
+  out.put("run.doubles", d);
+  out.put("run.counters", std::vector<std::uint64_t>{std::uint64_t(stage_), stage_begun_, stage_done_, at_rest_,
+                                                     at_max_steps_, hydroplaning_curve_, afloat_, in_window_,
+                                                     trail_begin_, std::uint64_t(n_w_)});
+  out.put("run.ramp_t", ramp_t_);
+  out.put("run.ramp_v", ramp_v_);
+  out.put("run.ramp_road_fz", ramp_road_fz_);
+  out.put("run.ramp_lift_fz", ramp_lift_fz_);
+}
+
+void TyreRun::restore(const cosim::CheckpointReader& in) {
+  restore_state(in, s_);
+  frames_->restore(in);
+  const auto d = in.get<double>("run.doubles", run_doubles(*this).size());
+  std::size_t k = 0;
+  for (double* v : run_doubles(*this)) *v = d[k++];
+  const auto c = in.get<std::uint64_t>("run.counters", 10);
+  if (c[0] > kDone) throw cosim::Error(in.path() + ": run.counters: stage " + std::to_string(c[0]) + " unknown");
+  stage_ = static_cast<Stage>(c[0]);
+  stage_begun_ = c[1], stage_done_ = c[2], at_rest_ = c[3], at_max_steps_ = c[4];
+  hydroplaning_curve_ = c[5], afloat_ = c[6], in_window_ = c[7];
+  trail_begin_ = c[8], n_w_ = static_cast<long>(c[9]);
+  ramp_t_ = in.get<double>("run.ramp_t");
+  ramp_v_ = in.get<double>("run.ramp_v", ramp_t_.size());
+  ramp_road_fz_ = in.get<double>("run.ramp_road_fz", ramp_t_.size());
+  ramp_lift_fz_ = in.get<double>("run.ramp_lift_fz", ramp_t_.size());
 }
 
 // The exchange, at a coupling window's start (docs/coupling.md): the surface
@@ -631,7 +680,7 @@ void TyreRun::finalize(cosim::RunRecord& record) {
 }  // namespace
 
 nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
-  cosim::RunRecord record(loaded, options.out_dir, "tyre_fe");
+  cosim::RunRecord record(loaded, options.out_dir, "tyre_fe", options.restart);
   TyreRun run(loaded, options);
   return cosim::run_participant(run, record, loaded.message.name(), options.quiet);
 }

@@ -3,6 +3,7 @@
 // Everything is flushed as it is written, so a run that fails keeps what it
 // produced up to its last completed step.
 #include <chrono>
+#include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -20,18 +21,26 @@ void make_folder(const std::string& path);
 void write_json(const std::string& path, const nlohmann::json& value);
 
 // A CSV time series with a fixed header. Rows are flushed at least every
-// second of wall time and when the writer is destroyed.
+// second of wall time and when the writer is destroyed. `resume`: the file of
+// a run being restarted, opened to append; it takes no rows (the restarted
+// run's set-up repeats those of step 0) until truncate() has cut it back to
+// its length at the checkpoint.
 class CsvWriter {
  public:
-  CsvWriter(const std::string& path, const std::vector<std::string>& columns);
+  CsvWriter(const std::string& path, const std::vector<std::string>& columns, bool resume = false);
   ~CsvWriter();
   void row(const std::vector<double>& values);
   void flush();
+  // Flushes and returns the file's length [bytes]: where a restart continues it.
+  std::uint64_t length();
+  // Flushes and cuts the file to `bytes` (rows after a checkpoint); the next rows follow on.
+  void truncate(std::uint64_t bytes);
   const std::string& path() const { return path_; }
 
  private:
   std::string path_;
   std::size_t columns_;
+  bool muted_ = false;  // resumed, not yet cut back to the checkpoint
   std::ofstream out_;
   std::chrono::steady_clock::time_point last_flush_;
 };
@@ -57,6 +66,10 @@ class VtkSeries {
                     const double* z, const std::vector<ScalarField>& scalars,
                     const std::vector<VectorField>& vectors);
   std::size_t frames() const { return series_.frames(); }
+  // The frames' times, and a restarted run's series taken back to those frames
+  // (the index rewritten; frame files beyond them are overwritten as they come).
+  std::vector<double> frame_times() const { return series_.times(); }
+  void resume(const std::vector<double>& times) { series_.resume(times); }
 
  private:
   vtk::Series series_;

@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/checkpoint.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/result_references.hpp"
 #include "cosim/scene_io.hpp"
@@ -33,9 +34,20 @@ class RunRecord {
  public:
   // Creates `out_dir`; the summary starts with the scene, its file, the source
   // revision, the program, the thread count and the --set overrides.
-  RunRecord(const LoadedScene& loaded, std::string out_dir, const std::string& program);
+  // `restart`: the run continues from the newest checkpoint in out_dir
+  // (docs/reliability.md); its series are reopened to be continued.
+  RunRecord(const LoadedScene& loaded, std::string out_dir, const std::string& program, bool restart = false);
 
   const std::string& out_dir() const { return out_dir_; }
+  const std::string& program() const { return program_; }
+  bool restarting() const { return restart_; }
+  std::uint64_t scene_hash() const { return scene_hash_; }
+  // Scene output.checkpoint_interval_s (0: only on a stop signal).
+  double checkpoint_interval_s() const { return checkpoint_interval_s_; }
+  // The record into a checkpoint (the series' lengths, the summary so far), and
+  // back: each series cut to its length then, the summary's results restored.
+  void save(CheckpointWriter& out);
+  void restore(const CheckpointReader& in);
   std::string path(const std::string& file) const { return out_dir_ + "/" + file; }
   nlohmann::json& summary() { return summary_; }
   nlohmann::json& results() { return summary_["results"]; }
@@ -62,7 +74,10 @@ class RunRecord {
   void write(const std::string& status, double sim_time_s, std::uint64_t steps);
 
  private:
-  std::string out_dir_;
+  std::string out_dir_, program_;
+  bool restart_ = false;
+  std::uint64_t scene_hash_ = 0;
+  double checkpoint_interval_s_ = 0.0;
   ResultReferences references_;  // the scene's
   nlohmann::json summary_;
   std::map<std::string, std::unique_ptr<CsvWriter>> series_;
@@ -97,10 +112,21 @@ class Participant {
   virtual void plots(RunRecord& record) { (void)record; }
   // Status of a run that ended without error ("completed", "stopped_at_max_steps").
   virtual std::string end_status() const { return "completed"; }
+
+  // Checkpoints (docs/reliability.md). save() writes the participant's whole
+  // state after a completed step (with its output), restore() reads it back
+  // after initialize() has built the model, so that the run goes on exactly as
+  // if never stopped. A participant without them leaves can_checkpoint() false:
+  // a restart of it is refused and no checkpoint is written.
+  virtual bool can_checkpoint() const { return false; }
+  virtual void save(CheckpointWriter& out) const { (void)out; }
+  virtual void restore(const CheckpointReader& in) { (void)in; }
 };
 
 // Runs a participant under the skeleton; returns the summary (also written to
-// out_dir/summary.json). `label` names the progress line.
+// out_dir/summary.json). `label` names the progress line. Checkpoints are
+// written every checkpoint_interval_s of simulated time and when a stop signal
+// ends the run; a restarting record resumes from the newest readable one.
 nlohmann::json run_participant(Participant& participant, RunRecord& record, const std::string& label, bool quiet);
 
 }  // namespace cosim

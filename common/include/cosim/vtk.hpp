@@ -89,8 +89,13 @@ class Series {
   std::string write(double time_s, const LegacyFile& file);
   std::size_t frames() const { return entries_.size(); }
   const std::string& name() const { return name_; }
+  std::vector<double> times() const;
+  // Takes the series back to frames 0 .. times.size() - 1 at these times (a restart).
+  void resume(const std::vector<double>& times);
 
  private:
+  std::string file_name(std::size_t frame) const;
+  void write_index() const;
   std::string folder_, name_;
   std::vector<std::pair<std::string, double>> entries_;
 };

@@ -53,6 +53,13 @@ struct Particles {
             &plastic_work, &surface_fx, &surface_fy, &surface_fz};
   }
 
+  // The names of real_fields(), in its order (checkpoint records).
+  static std::vector<const char*> real_field_names() {
+    return {"x", "y", "z", "vx", "vy", "vz", "ax", "ay", "az", "mass", "density", "density_rate",
+            "sxx", "syy", "szz", "sxy", "syz", "sxz", "pressure", "sound_speed", "eps_vol_pl",
+            "plastic_work", "surface_fx", "surface_fy", "surface_fz"};
+  }
+
   // Reorders the real particles by `order` (order[k] = old index of new k).
   void permute_real(const std::vector<std::uint32_t>& order);
 };

@@ -14,6 +14,8 @@ struct RunOptions {
   std::string out_dir;
   bool quiet = false;       // no progress line
   bool write_vtk = true;    // false: skip VTK even if the scene asks (tests)
+  // Continue the run in out_dir from its newest checkpoint (docs/reliability.md).
+  bool restart = false;
   // Non-null: the terrain of a coupled run; it runs until the surface's owner
   // ends the run, with the common step agreed through the exchange.
   SurfaceExchange* exchange = nullptr;

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/checkpoint.hpp"
 #include "snow_sph/model.hpp"
 #include "snow_sph/surface_contact.hpp"
 
@@ -130,6 +131,12 @@ class Solver {
   std::uint64_t interactions() const { return interactions_; }
   std::size_t rebuilds() const { return rebuilds_; }
   bool finite() const;  // no NaN/Inf in the particle state
+
+  // The whole state of the particles, the rigid bodies and the solver after a
+  // completed step, and back into a solver built from the same scene (after
+  // initialise()): the run goes on as if never stopped (solver_checkpoint.cpp).
+  void save(cosim::CheckpointWriter& out) const;
+  void restore(const cosim::CheckpointReader& in);
 
   // Shepard-interpolated pressure at a point (real and ghost particles).
   double pressure_at(double x, double y, double z) const;

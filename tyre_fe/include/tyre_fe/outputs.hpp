@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "cosim/checkpoint.hpp"
 #include "cosim/vtk.hpp"
 #include "tyre_fe/model3d.hpp"
 #include "tyre_fe/solver3d.hpp"
@@ -29,6 +30,9 @@ class FrameWriter {
   FrameWriter(std::string folder, double interval_s, const std::string& body = "tyre");
   void maybe_write(const Model3d& model, const State3d& s);
   void write(const Model3d& model, const State3d& s);
+  // The frames written and the next frame's time, for a restart (docs/reliability.md).
+  void save(cosim::CheckpointWriter& out) const;
+  void restore(const cosim::CheckpointReader& in);
 
  private:
   double interval_s_, next_s_ = 0.0;

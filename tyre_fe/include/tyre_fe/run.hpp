@@ -17,6 +17,8 @@ struct RunOptions {
   bool quiet = false;
   bool write_vtk = true;
   bool mesh_only = false;  // also set by the scene's tyre.mesh_only
+  // Continue the run in out_dir from its newest checkpoint (docs/reliability.md).
+  bool restart = false;
   // Non-null: the tyre runs on this terrain solver instead of its rigid road
   // (the coupled executable passes its DDS port).
   TerrainPort* terrain = nullptr;
