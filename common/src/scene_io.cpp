@@ -1,6 +1,7 @@
 #include "cosim/scene_io.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -14,7 +15,19 @@
 namespace cosim {
 namespace pb = google::protobuf;
 
+// Scene, material and study files are a few kilobytes; the cap keeps a path to
+// a device or a huge file (/dev/zero, a mistyped material_file) from reading
+// without end (tests/fuzz/fuzz_scene.cpp).
+constexpr std::uintmax_t kMaxInputFileBytes = 16u << 20;
+
 std::string read_file(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw Error(path + ": cannot open file");
+  if (!std::filesystem::is_regular_file(status)) throw Error(path + ": not a regular file");
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec || bytes > kMaxInputFileBytes)
+    throw Error(path + ": larger than " + std::to_string(kMaxInputFileBytes >> 20) + " MiB; not a scene, study or material file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open file");
   std::stringstream ss;

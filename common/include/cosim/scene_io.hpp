@@ -91,6 +91,9 @@ bool has_fe_body(const scene::Scene& scene);
 // transfer check, loading and rolling; a tread block's push and hold.
 double planned_end_time_s(const scene::Scene& scene);
 
+// A text input (scene, material, study, a run's summary.json); throws
+// cosim::Error naming it if it cannot be opened, is not a regular file or is
+// larger than 16 MiB.
 std::string read_file(const std::string& path);
 std::string folder_of(const std::string& path);
 
