@@ -113,7 +113,7 @@ TEST_F(Restart, AKilledRunRestartsFromItsLastPeriodicCheckpoint) {
   const std::string out = test_support::scratch("restart_kill");
   // On past the checkpoint for more than the CSV's one-second flush, so that
   // rows after it are on disk and the restart must cut them back.
-  EXPECT_EQ(stopped_run(out, SIGKILL, std::chrono::milliseconds(1500)), 128 + SIGKILL);
+  EXPECT_EQ(stopped_run(out, SIGKILL, std::chrono::milliseconds(1200)), 128 + SIGKILL);
   const double killed_at = last_row_time(out + "/energy.csv");
   auto args = plate_args(out);
   args.push_back("--restart");

@@ -9,11 +9,14 @@
 // (test_transport_roundtrip covers the wire).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
 #include <string>
 
 #include "cosim/error.hpp"
 #include "cosim/surface_exchange.hpp"
 #include "snow_sph/surface_contact.hpp"
+#include "test_paths.hpp"
 #include "tyre_fe/solver3d.hpp"
 #include "tyre_fe/terrain_port.hpp"
 
@@ -181,6 +184,48 @@ TEST(SurfaceExchange, InconsistentSamplesNameTheSampleAndTheField) {
     EXPECT_NE(std::string(e.what()).find("surface of exchange 4: facet 0 has a node that was not sent"), std::string::npos)
         << e.what();
   }
+}
+
+// A NaN or an infinity from a peer, a negative friction coefficient, a zero
+// node mass or a facet tag outside the enumeration is refused at the sample,
+// naming the entry, instead of poisoning the receiver's state a step later.
+TEST(SurfaceExchange, NonFiniteOrImpossibleValuesAreRefusedByEntry) {
+  const tyre_fe::ContactSurfaceDef surface = tyre_fe::make_contact_surface(strip());
+  auto refused = [](const std::function<void()>& f, const std::string& expected) {
+    const std::string message = test_support::error_of(f);
+    EXPECT_NE(message.find(expected), std::string::npos) << "expected '" << expected << "', got '" << message << "'";
+  };
+  cosim::SurfaceState state;
+  state.nodes = {0, 1};
+  state.x_m = state.y_m = state.z_m = state.vx_mps = state.vy_mps = state.vz_mps = {0.0, 0.0};
+  state.facets = {0};
+  state.friction_coefficient = {0.3};
+  EXPECT_NO_THROW(cosim::check_surface_state(state, surface, "k"));
+  state.vz_mps[1] = std::nan("");
+  refused([&] { cosim::check_surface_state(state, surface, "SurfaceKinematics of step 9"); },
+          "SurfaceKinematics of step 9: vz_mps[1] is not a finite number");
+  state.vz_mps[1] = 0.0;
+  state.friction_coefficient[0] = -0.1;
+  refused([&] { cosim::check_surface_state(state, surface, "k"); }, "friction_coefficient[0] is not a coefficient");
+  state.friction_coefficient[0] = 0.3;
+  state.time_s = INFINITY;
+  refused([&] { cosim::check_surface_state(state, surface, "k"); }, "time_s is not a finite number");
+
+  cosim::SurfaceLoads loads;
+  loads.nodes = {3};
+  loads.fx_N = loads.fy_N = {0.0};
+  loads.fz_N = {-INFINITY};
+  refused([&] { cosim::check_surface_loads(loads, surface, "ContactLoads of step 2"); },
+          "ContactLoads of step 2: a force, area or pressure[0] is not a finite number");
+
+  cosim::SurfaceTopology topology = surface;
+  topology.node_mass_kg.assign(topology.node_count(), 0.1);
+  EXPECT_NO_THROW(cosim::check_surface_topology(topology, "SurfaceMesh"));
+  topology.node_mass_kg[2] = 0.0;
+  refused([&] { cosim::check_surface_topology(topology, "SurfaceMesh"); }, "node_mass_kg[2] is not a positive finite mass");
+  topology.node_mass_kg[2] = 0.1;
+  topology.facet_tags[1] = static_cast<FacetTag>(200);
+  refused([&] { cosim::check_surface_topology(topology, "SurfaceMesh"); }, "facet_tags[1] is not a facet tag");
 }
 
 }  // namespace

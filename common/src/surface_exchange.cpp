@@ -1,5 +1,7 @@
 #include "cosim/surface_exchange.hpp"
 
+#include <cmath>
+
 #include "cosim/error.hpp"
 
 namespace cosim {
@@ -20,6 +22,14 @@ void check_range(const std::vector<std::uint32_t>& numbers, std::size_t count, c
                   kind + "s in the surface)");
 }
 
+// A NaN or an infinity from a peer would poison the receiving solver's state a
+// step later under a vaguer message; refuse the sample here, naming the entry.
+void check_finite(const std::vector<double>& values, const std::string& what, const char* field) {
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (!std::isfinite(values[k]))
+      throw Error(what + ": " + field + "[" + std::to_string(k) + "] is not a finite number");
+}
+
 }  // namespace
 
 SurfaceLoadTotals totals(const SurfaceLoads& loads) {
@@ -37,6 +47,13 @@ void check_surface_topology(const SurfaceTopology& t, const std::string& what) {
   if (!t.node_mass_kg.empty()) check_length(t.node_mass_kg.size(), n, what, "node_mass_kg", "nodes");
   check_length(t.facet_nodes.size(), 4 * t.facet_count(), what, "facet_nodes", "(4 per facet) facet corners");
   check_range(t.facet_nodes, n, what, "surface node");
+  check_finite(t.x_m, what, "x_m"), check_finite(t.y_m, what, "y_m"), check_finite(t.z_m, what, "z_m");
+  for (std::size_t k = 0; k < t.node_mass_kg.size(); ++k)
+    if (!(t.node_mass_kg[k] > 0.0 && std::isfinite(t.node_mass_kg[k])))
+      throw Error(what + ": node_mass_kg[" + std::to_string(k) + "] is not a positive finite mass");
+  for (std::size_t f = 0; f < t.facet_tags.size(); ++f)
+    if (static_cast<int>(t.facet_tags[f]) < 0 || static_cast<int>(t.facet_tags[f]) >= kFacetTagCount)
+      throw Error(what + ": facet_tags[" + std::to_string(f) + "] is not a facet tag");
 }
 
 void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology, const std::string& what,
@@ -51,6 +68,12 @@ void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology,
   if (friction_required || !s.friction_coefficient.empty()) check_length(s.friction_coefficient.size(), facets, what, "friction_coefficient", "facets");
   check_range(s.nodes, topology.node_count(), what, "surface node");
   check_range(s.facets, topology.facet_count(), what, "surface facet");
+  if (!std::isfinite(s.time_s)) throw Error(what + ": time_s is not a finite number");
+  check_finite(s.x_m, what, "x_m"), check_finite(s.y_m, what, "y_m"), check_finite(s.z_m, what, "z_m");
+  check_finite(s.vx_mps, what, "vx_mps"), check_finite(s.vy_mps, what, "vy_mps"), check_finite(s.vz_mps, what, "vz_mps");
+  for (std::size_t k = 0; k < s.friction_coefficient.size(); ++k)
+    if (!(s.friction_coefficient[k] >= 0.0 && std::isfinite(s.friction_coefficient[k])))
+      throw Error(what + ": friction_coefficient[" + std::to_string(k) + "] is not a coefficient (finite, >= 0)");
 }
 
 void check_surface_loads(const SurfaceLoads& l, const SurfaceTopology& topology, const std::string& what) {
@@ -69,6 +92,11 @@ void check_surface_loads(const SurfaceLoads& l, const SurfaceTopology& topology,
   check_length(l.pressure_Pa.size(), facets, what, "pressure_Pa", "facets");
   check_range(l.nodes, topology.node_count(), what, "surface node");
   check_range(l.facets, topology.facet_count(), what, "surface facet");
+  if (!std::isfinite(l.time_s)) throw Error(what + ": time_s is not a finite number");
+  for (const auto* v : {&l.fx_N, &l.fy_N, &l.fz_N, &l.normal_force_N, &l.pressure_x_N, &l.pressure_y_N,
+                        &l.pressure_z_N, &l.tangential_x_N, &l.tangential_y_N, &l.tangential_z_N,
+                        &l.contact_area_m2, &l.pressure_Pa})
+    check_finite(*v, what, "a force, area or pressure");
 }
 
 }  // namespace cosim

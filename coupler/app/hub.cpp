@@ -14,6 +14,8 @@
 #include "cosim/outputs.hpp"
 #include "cosim/participant.hpp"
 #include "cosim/signal.hpp"
+#include "cosim/surface_exchange.hpp"
+#include "cosim_coupling/exchange_topics.hpp"
 
 namespace coupler {
 namespace {
@@ -96,6 +98,9 @@ class CouplerRun final : public cosim::Participant {
   std::vector<FacetTag> tags_;
   std::vector<double> mu_all_, x_, y_, z_;
   tp::SurfaceMesh mesh_;
+  cosim::SurfaceTopology topology_;     // the mesh, checked
+  cosim::SurfaceState checked_state_;   // scratch of the samples' checks
+  cosim::SurfaceLoads checked_loads_;
   tp::SurfaceKinematics k_;
   tp::WheelState wheel_;
   tp::ContactLoads loads_;
@@ -168,6 +173,10 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   terrain_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
   if (!session_.wait_step(*mesh_in_, *mesh_filter_, 0, mesh_, "SurfaceMesh", tp::Role::tyre))
     throw cosim::Error("stopped before the first step");
+  // What the peers send is checked before it is used as an index (lengths, node
+  // and facet numbers, finite values): a bad sample ends the run naming its field.
+  cosim::coupling::from_topic(mesh_, topology_);
+  cosim::check_surface_topology(topology_, "SurfaceMesh");
   tags_.assign(mesh_.facet_tags.begin(), mesh_.facet_tags.end());
   fill_facet_friction(tags_, sipes, terrain, rules, mu_all_);
   x_ = mesh_.x_m, y_ = mesh_.y_m, z_ = mesh_.z_m;
@@ -190,6 +199,8 @@ bool CouplerRun::advance() {
   // Exchange, in: the tyre's surface of this window.
   if (!session_.wait_step(*tyre_kinematics_in_, *tyre_filter_, step_, k_, "SurfaceKinematics", tp::Role::tyre))
     return false;
+  cosim::coupling::from_topic(k_, checked_state_);
+  cosim::check_surface_state(checked_state_, topology_, "SurfaceKinematics of step " + std::to_string(step_));
   const auto t0 = Clock::now();
   // Friction per listed facet: the coupler's decision (thesis 4.3, 4.4, 6.1).
   // Sipe walls are not handed on: a sipe is a slit (0.6 mm) that no particle
@@ -214,6 +225,8 @@ bool CouplerRun::advance() {
   if (!session_.wait_step(*wheel_in_, *wheel_filter_, step_, wheel_, "WheelState", tp::Role::tyre)) return false;
   if (!session_.wait_step(*terrain_loads_in_, *terrain_filter_, step_, loads_, "ContactLoads", tp::Role::terrain))
     return false;
+  cosim::coupling::from_topic(loads_, checked_loads_);
+  cosim::check_surface_loads(checked_loads_, topology_, "ContactLoads of step " + std::to_string(step_));
   const auto t1 = Clock::now();
   tyre_loads_out_->write(loads_);
   exchange_s_ += seconds_since(t1);
