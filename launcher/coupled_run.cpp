@@ -140,7 +140,9 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
     if (own.is_object() && own.contains("error")) participants[r.name]["error"] = own["error"];
     if (r.exit_code != 0) {
       all_completed = false;
-      if (code == 0) code = r.exit_code;
+      // A participant killed by a signal (128 + n) is the run's failure (2), not
+      // the launcher's own death by that signal, which a shell would read it as.
+      if (code == 0) code = r.exit_code < 128 ? r.exit_code : 2;
       std::fprintf(stderr, "cosim: %s ended with code %d after %.1f s%s\n", r.name.c_str(), r.exit_code,
                    r.ended_after_s, r.terminated_by_us ? " (terminated by the launcher)" : "");
     }

@@ -153,8 +153,8 @@ std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, do
     }
     ++running;
   }
-  bool failed = false;
-  Clock::time_point failed_at;
+  bool failed = false, terminated = false, killed = false;
+  Clock::time_point failed_at, terminated_at;
   while (running > 0) {
     int status = 0;
     const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -171,10 +171,17 @@ std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, do
     }
     if (pid < 0 && errno != EINTR) break;
     forward.forward_to(pids);
-    if (failed && std::chrono::duration<double>(Clock::now() - failed_at).count() > grace_s) {
+    if (failed && !terminated && std::chrono::duration<double>(Clock::now() - failed_at).count() > grace_s) {
       for (std::size_t c = 0; c < children.size(); ++c)
         if (pids[c] > 0) kill(pids[c], SIGTERM), results[c].terminated_by_us = true;
-      failed_at = Clock::now() + std::chrono::hours(1);  // once
+      terminated = true, terminated_at = Clock::now();
+    }
+    // A child that SIGTERM cannot end (stopped with SIGSTOP, hung in a system
+    // call with the signal blocked) is killed after another grace period.
+    if (terminated && !killed && std::chrono::duration<double>(Clock::now() - terminated_at).count() > grace_s) {
+      for (std::size_t c = 0; c < children.size(); ++c)
+        if (pids[c] > 0) kill(pids[c], SIGKILL);
+      killed = true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }

@@ -41,7 +41,8 @@ int run_child(const std::string& program, const std::vector<std::string>& args);
 // Several programs run together (the processes of a coupled run). They are
 // started at once and waited for together; when one ends with an error the
 // others are given `grace_s` to end by themselves (they notice within their
-// own time-outs) before they are terminated.
+// own time-outs) before they are terminated (SIGTERM), and those still there
+// grace_s later (a stopped or hung process) are killed (SIGKILL).
 struct ChildSpec {
   std::string name;  // for messages ("tyre_fe")
   std::string program;
