@@ -104,6 +104,7 @@ CheckpointWriter::CheckpointWriter(const std::string& program, std::uint64_t has
   append<std::uint64_t>(body_, hash);
   append<std::uint64_t>(body_, step);
   append<double>(body_, time_s);
+  count_at_ = body_.size();
   append<std::uint32_t>(body_, 0);  // record count, set by commit()
 }
 
@@ -121,10 +122,8 @@ void CheckpointWriter::put_raw(const std::string& name, std::uint8_t type, std::
 
 void CheckpointWriter::commit(const std::string& path) const {
   std::vector<char> out = body_;
-  // The record count sits after the magic, version, program, hash, step and time.
-  const std::size_t count_at = 8 + 4 + 4 + *reinterpret_cast<const std::uint32_t*>(body_.data() + 12) + 8 + 8 + 8;
   const auto records = static_cast<std::uint32_t>(names_.size());
-  std::memcpy(out.data() + count_at, &records, 4);
+  std::memcpy(out.data() + count_at_, &records, 4);
   append<std::uint64_t>(out, fnv1a(out.data(), out.size()));
   make_folder(std::filesystem::path(path).parent_path().string());
   const std::string tmp = path + ".tmp";

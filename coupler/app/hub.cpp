@@ -95,10 +95,9 @@ class CouplerRun final : public cosim::Participant {
   std::unique_ptr<tp::Writer<tp::ForceSummary>> summary_out_;
   std::unique_ptr<tp::SampleFilter> mesh_filter_, tyre_filter_, wheel_filter_, terrain_filter_;
   cosim::CsvWriter *csv_ = nullptr, *pace_csv_ = nullptr;
-  std::vector<FacetTag> tags_;
   std::vector<double> mu_all_, x_, y_, z_;
   tp::SurfaceMesh mesh_;
-  cosim::SurfaceTopology topology_;     // the mesh, checked
+  cosim::SurfaceTopology topology_;     // the mesh, checked (its tags, its facets' nodes)
   cosim::SurfaceState checked_state_;   // scratch of the samples' checks
   cosim::SurfaceLoads checked_loads_;
   tp::SurfaceKinematics k_;
@@ -177,9 +176,8 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   // and facet numbers, finite values): a bad sample ends the run naming its field.
   cosim::coupling::from_topic(mesh_, topology_);
   cosim::check_surface_topology(topology_, "SurfaceMesh");
-  tags_.assign(mesh_.facet_tags.begin(), mesh_.facet_tags.end());
-  fill_facet_friction(tags_, sipes, terrain, rules, mu_all_);
-  x_ = mesh_.x_m, y_ = mesh_.y_m, z_ = mesh_.z_m;
+  fill_facet_friction(topology_.facet_tags, sipes, terrain, rules, mu_all_);
+  x_ = topology_.x_m, y_ = topology_.y_m, z_ = topology_.z_m;
   rolling_radius_ = c.rolling_radius_m();
   record.results()["rolling_radius_for_F5_m"] = rolling_radius_;
   record.results()["rolling_radius_source"] = c.rolling_radius_source().empty() ? "scene" : c.rolling_radius_source();
@@ -214,7 +212,7 @@ bool CouplerRun::advance() {
     if (f >= mu_all_.size())
       throw cosim::Error("SurfaceKinematics of step " + std::to_string(step_) + ": facet " + std::to_string(f) +
                          " is not in the surface mesh");
-    if (tags_[f] == FacetTag::sipe_wall) continue;
+    if (topology_.facet_tags[f] == FacetTag::sipe_wall) continue;
     k_.facets[kept] = f, k_.friction_coefficient[kept] = mu_all_[f], ++kept;
   }
   k_.facets.resize(kept), k_.friction_coefficient.resize(kept);
@@ -237,8 +235,8 @@ bool CouplerRun::advance() {
     const auto n = k_.nodes[j];
     x_[n] = k_.x_m[j], y_[n] = k_.y_m[j], z_[n] = k_.z_m[j];
   }
-  const FacetGeometry geometry = quad_facet_geometry(x_, y_, z_, mesh_.facet_nodes);
-  const FacetLoads facet_loads = facet_loads_from_contact(loads_, tags_, geometry);
+  const FacetGeometry geometry = quad_facet_geometry(x_, y_, z_, topology_.facet_nodes);
+  const FacetLoads facet_loads = facet_loads_from_contact(loads_, topology_.facet_tags, geometry);
   const ForceDecomposition d = decompose_forces(facet_loads, wheel_input(wheel_, rolling_radius_), decomposition_);
   summary_out_->write(force_summary(d, k_.header));
   double fx = 0.0, fy = 0.0, fz = 0.0;

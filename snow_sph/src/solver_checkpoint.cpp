@@ -12,20 +12,18 @@
 namespace snow_sph {
 namespace {
 
-const char* const kEnergyNames[] = {"kinetic", "internal", "elastic", "plastic_dissipation", "viscous_dissipation",
-                                    "contact_dissipation", "contact_elastic", "external_work",
-                                    "deactivated_kinetic", "drained_kinetic", "initial_total"};
-
-std::vector<double*> energy_fields(EnergyBalance& e) {
-  return {&e.kinetic, &e.internal, &e.elastic, &e.plastic_dissipation, &e.viscous_dissipation,
-          &e.contact_dissipation, &e.contact_elastic, &e.external_work, &e.deactivated_kinetic,
-          &e.drained_kinetic, &e.initial_total};
+// Templates, so that saving reads a const state through the same lists as restoring.
+template <class E> auto energy_fields(E& e) {
+  return std::vector<decltype(&e.kinetic)>{&e.kinetic, &e.internal, &e.elastic, &e.plastic_dissipation,
+                                           &e.viscous_dissipation, &e.contact_dissipation, &e.contact_elastic,
+                                           &e.external_work, &e.deactivated_kinetic, &e.drained_kinetic,
+                                           &e.initial_total};
 }
 
 // The moving state of a rigid body (its geometry and load come from the scene).
-std::vector<double*> body_fields(RigidBody& b) {
-  return {&b.x, &b.y, &b.z, &b.vz, &b.az, &b.slow_since_s, &b.contact_force_x_domain, &b.contact_force_y_domain,
-          &b.contact_force_z_domain};
+template <class B> auto body_fields(B& b) {
+  return std::vector<decltype(&b.x)>{&b.x, &b.y, &b.z, &b.vz, &b.az, &b.slow_since_s, &b.contact_force_x_domain,
+                                     &b.contact_force_y_domain, &b.contact_force_z_domain};
 }
 
 }  // namespace
@@ -65,12 +63,11 @@ void Solver::save(cosim::CheckpointWriter& out) const {
   out.put("sph.sticks.normal", normal);
   out.put("sph.sticks.force", force);
   std::vector<double> bodies;
-  for (RigidBody& b : m_.bodies)
-    for (double* v : body_fields(b)) bodies.push_back(*v);
+  for (const RigidBody& b : m_.bodies)
+    for (const double* v : body_fields(b)) bodies.push_back(*v);
   out.put("sph.bodies", bodies);
-  EnergyBalance energy = energy_;
   std::vector<double> e;
-  for (double* v : energy_fields(energy)) e.push_back(*v);
+  for (const double* v : energy_fields(energy_)) e.push_back(*v);
   out.put("sph.energy", e);
   out.put("sph.doubles",
           std::vector<double>{time_, dt_prev_, step_dt_, smallest_limit_dt_, held_load_limit_dt_, surface_force_[0],
@@ -133,7 +130,7 @@ void Solver::restore(const cosim::CheckpointReader& in) {
   std::size_t k = 0;
   for (RigidBody& b : m_.bodies)
     for (double* v : body_fields(b)) *v = bodies[k++];
-  const auto e = in.get<double>("sph.energy", std::size(kEnergyNames));
+  const auto e = in.get<double>("sph.energy", energy_fields(energy_).size());
   k = 0;
   for (double* v : energy_fields(energy_)) *v = e[k++];
   const auto d = in.get<double>("sph.doubles", 16);

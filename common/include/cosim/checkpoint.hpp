@@ -64,6 +64,7 @@ class CheckpointWriter {
  private:
   void put_raw(const std::string& name, std::uint8_t type, std::uint64_t count, const void* data, std::size_t size);
   std::vector<char> body_;
+  std::size_t count_at_ = 0;  // where the record count goes in body_
   std::vector<std::string> names_;
 };
 
