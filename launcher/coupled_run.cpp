@@ -4,10 +4,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/checkpoint.hpp"
 #include "cosim/error.hpp"
 #include "cosim/result_references.hpp"
 #include "cosim/outputs.hpp"
@@ -77,11 +79,37 @@ void print_force_means(const nlohmann::json& r, const nlohmann::json& performanc
                 100.0 * performance.value("active_particle_share", 1.0), summary.value("wall_time_s", 0.0));
 }
 
+// The newest exchange of which all three processes have a checkpoint in `out`
+// (0: none); `listing` says what each has.
+std::uint64_t newest_common_checkpoint(const std::string& out, std::string& listing) {
+  std::set<std::uint64_t> common;
+  bool first = true;
+  listing.clear();
+  for (const auto& [dir, program] : {std::pair<const char*, const char*>{"coupler", "coupler"},
+                                     {"terrain", "snow_sph"}, {"tyre", "tyre_fe"}}) {
+    std::set<std::uint64_t> steps;
+    std::string list;
+    for (const auto& f : list_checkpoints(out + "/" + dir, program)) {
+      steps.insert(f.step);
+      list += (list.empty() ? "" : ", ") + std::to_string(f.step);
+    }
+    listing += std::string(listing.empty() ? "" : "; ") + program + ": " + (list.empty() ? "none" : list);
+    if (first) common = steps;
+    else {
+      std::set<std::uint64_t> both;
+      for (auto e : steps)
+        if (common.count(e)) both.insert(e);
+      common = both;
+    }
+    first = false;
+  }
+  return common.empty() ? 0 : *common.rbegin();
+}
+
 }  // namespace
 
 int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   const auto vendors = parse_vendor_map(request.dds);
-  const std::uint64_t run_id = transport::new_run_id();
   const int domain = request.domain >= 0 ? request.domain : scene.message.coupling().domain_id();
   make_folder(request.out_dir);
   const std::string out = request.out_dir;
@@ -89,17 +117,21 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   std::error_code ignored;
   std::filesystem::remove(out + "/forces.csv", ignored);
   std::filesystem::create_symlink("coupler/forces.csv", out + "/forces.csv", ignored);
-  std::fprintf(stderr,
-               "cosim: scene '%s' couples the tyre to an SPH terrain: coupler (%s) + snow_sph (%s) + tyre_fe (%s), "
-               "DDS domain %d, run %s\n",
-               scene.message.name().c_str(), transport::vendor_name(vendors.at("coupler")),
-               transport::vendor_name(vendors.at("terrain")), transport::vendor_name(vendors.at("tyre")), domain,
-               hex(run_id).c_str());
+  // A restart continues every process from the newest exchange all three
+  // checkpointed (docs/reliability.md, "Coupled runs").
+  std::uint64_t from_exchange = 0;
+  std::string listing;
+  if (request.restart) {
+    from_exchange = newest_common_checkpoint(out, listing);
+    if (from_exchange == 0)
+      throw Error(out + ": no checkpoint common to the coupler, the terrain and the tyre to restart from (" + listing + ")");
+  }
   // Three processes share the cores and wait on each other every step: OpenMP
   // threads that spin while idle would take the core a peer needs (measured: 56
   // against 150 steps/s on 2 cores). A user's own setting is kept.
   setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
   const std::string bin = executable_folder();
+  std::uint64_t run_id = 0;
   auto args_for = [&](const std::string& role, const std::string& dir, bool solver, bool quiet) {
     std::vector<std::string> a{request.scene_file, "--out", dir,  "--run-id", hex(run_id),
                                "--dds", transport::vendor_name(vendors.at(role)), "--domain", std::to_string(domain)};
@@ -107,13 +139,48 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
     for (const auto& s : request.sets) a.insert(a.end(), {"--set", s});
     if (quiet || request.quiet) a.push_back("--quiet");
     if (request.no_vtk && solver) a.push_back("--no-vtk");
+    if (from_exchange > 0) a.insert(a.end(), {"--restart-at", std::to_string(from_exchange)});
     return a;
   };
-  const std::vector<ChildSpec> children{
-      {"coupler", bin + "/coupler", args_for("coupler", out + "/coupler", false, true)},
-      {"snow_sph", bin + "/snow_sph", args_for("terrain", out + "/terrain", true, true)},
-      {"tyre_fe", bin + "/tyre_fe", args_for("tyre", out + "/tyre", true, false)}};
-  const auto results = run_children(children, 10.0);
+  const std::uint64_t restarted_from = from_exchange;
+  nlohmann::json restarts = nlohmann::json::array();
+  std::vector<ChildResult> results;
+  for (int attempt = 0;; ++attempt) {
+    run_id = transport::new_run_id();  // a new id: nothing of an earlier attempt is taken for this one's
+    std::fprintf(stderr,
+                 "cosim: scene '%s' couples the tyre to an SPH terrain: coupler (%s) + snow_sph (%s) + tyre_fe (%s), "
+                 "DDS domain %d, run %s%s\n",
+                 scene.message.name().c_str(), transport::vendor_name(vendors.at("coupler")),
+                 transport::vendor_name(vendors.at("terrain")), transport::vendor_name(vendors.at("tyre")), domain,
+                 hex(run_id).c_str(),
+                 from_exchange > 0 ? (", continuing from exchange " + std::to_string(from_exchange)).c_str() : "");
+    const std::vector<ChildSpec> children{
+        {"coupler", bin + "/coupler", args_for("coupler", out + "/coupler", false, true)},
+        {"snow_sph", bin + "/snow_sph", args_for("terrain", out + "/terrain", true, true)},
+        {"tyre_fe", bin + "/tyre_fe", args_for("tyre", out + "/tyre", true, false)}};
+    results = run_children(children, 10.0);
+    const ChildResult* first_failed = nullptr;
+    bool signalled = false;
+    for (const auto& r : results) {
+      signalled = signalled || r.signal_forwarded;
+      if (r.exit_code != 0 && (!first_failed || r.ended_after_s < first_failed->ended_after_s)) first_failed = &r;
+    }
+    // A stop asked for by the user is not a failure to recover from.
+    if (!first_failed || signalled || attempt >= request.restart_on_failure) break;
+    const std::uint64_t next = newest_common_checkpoint(out, listing);
+    if (next == 0) {
+      std::fprintf(stderr, "cosim: %s ended with code %d and there is no common checkpoint to restart from (%s)\n",
+                   first_failed->name.c_str(), first_failed->exit_code, listing.c_str());
+      break;
+    }
+    std::fprintf(stderr, "cosim: %s ended with code %d after %.1f s; restarting every process from exchange %llu "
+                 "(restart %d of at most %d)\n", first_failed->name.c_str(), first_failed->exit_code,
+                 first_failed->ended_after_s, static_cast<unsigned long long>(next), attempt + 1,
+                 request.restart_on_failure);
+    restarts.push_back({{"failed", first_failed->name}, {"exit_code", first_failed->exit_code},
+                        {"after_s", first_failed->ended_after_s}, {"from_exchange", next}, {"run_id", hex(run_id)}});
+    from_exchange = next;
+  }
 
   // The run's summary: the coupler's results (the force decomposition), the
   // terrain's beside them (the rut and the deepest penetration), the tyre's,
@@ -148,6 +215,8 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
     }
   }
   summary["participants"] = participants;
+  if (!restarts.empty()) summary["restarts_after_failure"] = restarts;
+  if (request.restart) summary["restarted_from_exchange"] = restarted_from;
   nlohmann::json results_json = nlohmann::json::object();
   if (coupler.is_object() && coupler.contains("results")) results_json = coupler["results"];
   // The terrain's results at the top level too; a key the coupler has keeps the coupler's value.

@@ -1,5 +1,5 @@
 // cosim: run a scene with the participants it needs, check a scene, run a study.
-//   cosim run SCENE --out DIR [--set field.path=value ...] [--restart]
+//   cosim run SCENE --out DIR [--set field.path=value ...] [--restart] [--restart-on-failure N]
 //   cosim check SCENE [--set ...]
 //   cosim study STUDY --out DIR [--pass NAME] [--resume] [--tabulate]
 //   cosim monitor [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...] [--csv FILE]
@@ -23,7 +23,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", run.sets, "override a scene field: field.path=value");
   run_cmd->add_flag("--quiet", run.quiet, "no progress line");
   run_cmd->add_flag("--no-vtk", run.no_vtk, "do not write VTK files");
-  run_cmd->add_flag("--restart", run.restart, "continue the run in --out from its newest checkpoint");
+  run_cmd->add_flag("--restart", run.restart,
+                    "continue the run in --out from its newest checkpoint (coupled: the newest common to all three)");
+  run_cmd->add_option("--restart-on-failure", run.restart_on_failure,
+                      "coupled scenes: when a process dies, restart the run from its newest common checkpoint, "
+                      "at most this many times");
   run_cmd->add_flag("--mesh-only", run.mesh_only, "tyre scenes: write the meshes and their statistics only");
   run_cmd->add_option("--dds", run.dds,
                       "coupled scenes: DDS vendor, for all (fast|cyclone) or per process "

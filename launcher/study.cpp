@@ -47,9 +47,9 @@ int run_scene_processes(const RunRequest& request) {
   const auto scene = load_scene(request.scene_file, request.sets);
   check_scene(*scene);
   const auto programs = participants(scene->message);
-  if (request.restart && programs.size() > 1)
-    throw Error(request.scene_file + ": --restart continues runs of one program (the terrain or the tyre on its "
-                "own) so far; this scene runs coupled (docs/reliability.md)");
+  if (request.restart_on_failure > 0 && programs.size() == 1)
+    throw Error(request.scene_file + ": --restart-on-failure restarts the processes of a coupled run; this scene runs " +
+                programs.front() + " alone (restart it with --restart)");
   if (programs.size() > 1) return run_coupled(request, *scene);
   const char* why = programs.front() == "tyre_fe" ? "(tyre on a rigid road: no SPH, no DDS)"
                                                   : "(no tyre, no DDS)";

@@ -23,6 +23,9 @@ struct RunRequest {
   bool no_vtk = false;
   bool mesh_only = false;  // tyre scenes: write the meshes only
   bool restart = false;    // continue the run in out_dir from its newest checkpoint
+  // Coupled scenes: when a process dies, start the run again from the newest
+  // checkpoint common to all three, at most this many times (docs/reliability.md).
+  int restart_on_failure = 0;
   // Coupled scenes: DDS vendor per process ("fast", "cyclone" or
   // "tyre=fast,terrain=cyclone,coupler=cyclone") and domain (-1: the scene's).
   std::string dds = "cyclone";

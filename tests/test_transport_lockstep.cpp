@@ -4,6 +4,8 @@
 // time step, timeout naming the missing role) on each vendor.
 #include <gtest/gtest.h>
 
+#include "test_paths.hpp"
+
 #include <future>
 
 #include "cosim/error.hpp"
@@ -120,6 +122,28 @@ TEST_P(LockStep, HandshakeAgreesOnTheSmallerTimeStep) {
   ASSERT_EQ(t.peer_time_step_s.size(), 1u);
   EXPECT_EQ(t.peer_time_step_s[0], 4e-6);
   EXPECT_EQ(s.peer_time_step_s[0], 2.5e-6);
+}
+
+// A restarted run whose processes continue from different checkpoints cannot
+// go on: each side learns the other's starting exchange and refuses, naming both.
+TEST_P(LockStep, HandshakeRefusesPeersStartingFromDifferentExchanges) {
+  const int domain = domains.next();
+  const std::uint64_t run = new_run_id();
+  auto tyre = make_participant(GetParam().writer, loopback(domain));
+  auto coupler = make_participant(GetParam().reader, loopback(domain));
+  auto side = [&](Participant& p, Role self, Role peer, std::uint64_t start) {
+    auto w = p.create_writer<RunControl>();
+    auto r = p.create_reader<RunControl>();
+    HandshakeOptions o{run, self, {peer}, 1e-6, 10s};
+    o.start_exchange = start;
+    return test_support::error_of([&] { handshake(*w, *r, o); });
+  };
+  auto coupler_error = std::async(std::launch::async, [&] { return side(*coupler, Role::coupler, Role::tyre, 892); });
+  const std::string tyre_error = side(*tyre, Role::tyre, Role::coupler, 446);
+  EXPECT_NE(tyre_error.find("the coupler starts from exchange 892 and the tyre from exchange 446"), std::string::npos)
+      << tyre_error;
+  const std::string c = coupler_error.get();
+  EXPECT_NE(c.find("the tyre starts from exchange 446 and the coupler from exchange 892"), std::string::npos) << c;
 }
 
 INSTANTIATE_TEST_SUITE_P(Pairs, LockStep, testing::ValuesIn(vendor_pairs()), pair_name);

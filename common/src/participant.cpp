@@ -1,6 +1,7 @@
 #include "cosim/participant.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -22,11 +23,12 @@ double next_checkpoint_after(double t, double interval) {
   return (std::floor(t / interval * (1.0 + 1e-12)) + 1.0) * interval;
 }
 
-void write_checkpoint(Participant& p, RunRecord& record) {
-  CheckpointWriter out(record.program(), record.scene_hash(), p.steps(), p.time_s());
+// `step`: the participant's step, or for a coupled one the exchanges completed.
+void write_checkpoint(Participant& p, RunRecord& record, std::uint64_t step) {
+  CheckpointWriter out(record.program(), record.scene_hash(), step, p.time_s());
   record.save(out);
   p.save(out);
-  out.commit(checkpoint_path(record.out_dir(), record.program(), p.steps()));
+  out.commit(checkpoint_path(record.out_dir(), record.program(), step));
   // Two: if the newest were damaged on disk, the one before still restarts the run.
   prune_checkpoints(record.out_dir(), record.program(), 2);
 }
@@ -40,6 +42,17 @@ std::unique_ptr<CheckpointReader> newest_checkpoint(const Participant& p, const 
   const auto files = list_checkpoints(record.out_dir(), program);
   if (files.empty())
     throw Error(record.out_dir() + "/checkpoints: no checkpoint of " + program + " to restart from");
+  if (const auto& at = record.restart_at()) {
+    const std::string path = checkpoint_path(record.out_dir(), program, *at);
+    for (const auto& f : files)
+      if (f.path == path) {
+        auto in = std::make_unique<CheckpointReader>(path);
+        in->expect(program, record.scene_hash());
+        return in;
+      }
+    throw Error(path + ": no such checkpoint of " + program + " to restart from (--restart-at " +
+                std::to_string(*at) + ")");
+  }
   for (auto it = files.rbegin(); it != files.rend(); ++it) {
     std::unique_ptr<CheckpointReader> in;
     try {
@@ -54,6 +67,38 @@ std::unique_ptr<CheckpointReader> newest_checkpoint(const Participant& p, const 
   }
   return nullptr;  // not reached: the loop returns or throws
 }
+
+// The checkpoints of a coupled participant: between windows, every `every`
+// exchanges (the same count in every process of the run), and at the exchange
+// named for a stop (Session::announce_checkpoint_stop).
+struct CoupledCheckpoints {
+  double interval_s;
+  std::uint64_t last_written;  // the exchange of the newest checkpoint (the one resumed from)
+  std::uint64_t every = 0;
+  bool stop_requested = false;
+
+  void after_step(Participant& p, RunRecord& record) {
+    const std::uint64_t stop_at = p.checkpoint_stop_exchange();
+    if (const auto done = p.exchanges_completed()) {
+      if (every == 0 && interval_s > 0 && p.coupling_window_s() > 0)
+        every = std::max<std::uint64_t>(1, std::llround(interval_s / p.coupling_window_s()));
+      const bool periodic = every > 0 && *done > 0 && *done % every == 0;
+      const bool stop_here = stop_at > 0 && *done == stop_at;
+      if ((periodic || stop_here) && *done != last_written) write_checkpoint(p, record, *done), last_written = *done;
+      if (stop_here)
+        throw Error("stopped by a signal at exchange " + std::to_string(*done) + ", t = " + number_text(p.time_s()) +
+                    " s: every process of the run wrote its checkpoint there (cosim run --restart continues)");
+      if (stop_at > 0 && *done > stop_at)
+        throw Error("passed exchange " + std::to_string(stop_at) + ", named for a stop at a common checkpoint");
+    }
+    if (interrupt_requested() && !stop_requested) {
+      stop_requested = true;
+      if (!p.request_checkpoint_stop())
+        throw Error("interrupted by a signal at t = " + number_text(p.time_s()) +
+                    " s, before joining the coupled run: no checkpoint");
+    }
+  }
+};
 
 }  // namespace
 
@@ -145,6 +190,10 @@ void RunRecord::write(const std::string& status, double sim_time_s, std::uint64_
 nlohmann::json run_participant(Participant& p, RunRecord& record, const std::string& label, bool quiet) {
   bool finalized = false;
   const auto checkpoint = record.restarting() ? newest_checkpoint(p, record) : nullptr;
+  if (checkpoint) record.set_resume_step(checkpoint->step());
+  // A run started afresh in a folder replaces the checkpoints of one before it
+  // (a restart must never continue another run's).
+  if (!checkpoint && p.can_checkpoint()) prune_checkpoints(record.out_dir(), record.program(), 0);
   try {
     const double planned_end_s = p.initialize(record);
     if (checkpoint) {
@@ -155,18 +204,23 @@ nlohmann::json run_participant(Participant& p, RunRecord& record, const std::str
     }
     const double interval = p.can_checkpoint() ? record.checkpoint_interval_s() : 0.0;
     double next_checkpoint_s = interval > 0 ? next_checkpoint_after(p.time_s(), interval) : 0.0;
+    CoupledCheckpoints coupled{interval, checkpoint ? checkpoint->step() : 0};
     Progress progress(label, planned_end_s, quiet);
     while (p.advance()) {
       p.output(record);
       progress.update(p.time_s(), p.steps());
+      if (p.coupled()) {
+        coupled.after_step(p, record);
+        continue;
+      }
       if (interval > 0 && p.time_s() >= next_checkpoint_s) {
-        write_checkpoint(p, record);
+        write_checkpoint(p, record, p.steps());
         next_checkpoint_s = next_checkpoint_after(p.time_s(), interval);
       }
       if (interrupt_requested()) {
         std::string kept;
         if (p.can_checkpoint()) {
-          write_checkpoint(p, record);
+          write_checkpoint(p, record, p.steps());
           kept = "; checkpoint written (--restart continues from it)";
         }
         throw Error("interrupted by a signal at step " + std::to_string(p.steps()) + ", t = " +

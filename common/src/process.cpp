@@ -53,11 +53,13 @@ class ForwardInterrupts {
   ForwardInterrupts(const ForwardInterrupts&) = delete;
   ForwardInterrupts& operator=(const ForwardInterrupts&) = delete;
   // Sends a signal that arrived since the last call to these children (pid > 0).
-  void forward_to(const std::vector<pid_t>& pids) {
+  // True if one was sent.
+  bool forward_to(const std::vector<pid_t>& pids) {
     const int signal = g_forward.exchange(0);
-    if (signal == 0) return;
+    if (signal == 0) return false;
     for (pid_t pid : pids)
       if (pid > 0) kill(pid, signal);
+    return true;
   }
 
  private:
@@ -170,7 +172,8 @@ std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, do
       continue;
     }
     if (pid < 0 && errno != EINTR) break;
-    forward.forward_to(pids);
+    if (forward.forward_to(pids))
+      for (auto& r : results) r.signal_forwarded = true;
     if (failed && !terminated && std::chrono::duration<double>(Clock::now() - failed_at).count() > grace_s) {
       for (std::size_t c = 0; c < children.size(); ++c)
         if (pids[c] > 0) kill(pids[c], SIGTERM), results[c].terminated_by_us = true;

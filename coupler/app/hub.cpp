@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "coupler/facet_geometry.hpp"
 #include "cosim/coupling_window.hpp"
@@ -74,6 +75,21 @@ class CouplerRun final : public cosim::Participant {
   }
   void plots(cosim::RunRecord& record) override;
 
+  // Checkpoints between windows (docs/reliability.md, "Coupled runs").
+  bool can_checkpoint() const override { return true; }
+  bool coupled() const override { return true; }
+  std::optional<std::uint64_t> exchanges_completed() const override {
+    return joined_ ? std::optional<std::uint64_t>(step_) : std::nullopt;
+  }
+  double coupling_window_s() const override { return window_s_; }
+  bool request_checkpoint_stop() override {
+    session_.request_checkpoint_stop();
+    return true;
+  }
+  std::uint64_t checkpoint_stop_exchange() const override { return session_.checkpoint_stop_exchange(); }
+  void save(cosim::CheckpointWriter& out) const override;
+  void restore(const cosim::CheckpointReader& in) override;
+
  private:
   struct Row {
     double t;
@@ -139,7 +155,8 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   const tp::HandshakeResult joined =
       session_.join({tp::Role::tyre, tp::Role::terrain}, 0.0,
                     {mesh_in_.get(), tyre_kinematics_in_.get(), wheel_in_.get(), terrain_kinematics_out_.get(),
-                     terrain_loads_in_.get(), tyre_loads_out_.get()});
+                     terrain_loads_in_.get(), tyre_loads_out_.get()},
+                    record.resume_step());
   // The coupling window (docs/coupling.md): the terrain's stable step, the
   // tyre sub-cycling inside it (multi-rate), or the smaller of the two steps
   // for both (the common-step reference).
@@ -172,6 +189,8 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   terrain_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
   if (!session_.wait_step(*mesh_in_, *mesh_filter_, 0, mesh_, "SurfaceMesh", tp::Role::tyre))
     throw cosim::Error("stopped before the first step");
+  if (record.resume_step() > 0 && !options_.quiet)
+    std::fprintf(stderr, "[coupler] continuing from exchange %llu\n", static_cast<unsigned long long>(record.resume_step()));
   // What the peers send is checked before it is used as an index (lengths, node
   // and facet numbers, finite values): a bad sample ends the run naming its field.
   cosim::coupling::from_topic(mesh_, topology_);
@@ -199,6 +218,10 @@ bool CouplerRun::advance() {
     return false;
   cosim::coupling::from_topic(k_, checked_state_);
   cosim::check_surface_state(checked_state_, topology_, "SurfaceKinematics of step " + std::to_string(step_));
+  // A stop signal somewhere in the run: the solvers are both waiting on this
+  // exchange's samples, so the next one is a point all three can still reach.
+  if (session_.checkpoint_stop_requested() && session_.checkpoint_stop_exchange() == 0)
+    session_.announce_checkpoint_stop(step_ + 1, {tp::Role::tyre, tp::Role::terrain});
   const auto t0 = Clock::now();
   // Friction per listed facet: the coupler's decision (thesis 4.3, 4.4, 6.1).
   // Sipe walls are not handed on: a sipe is a slit (0.6 mm) that no particle
@@ -254,6 +277,59 @@ bool CouplerRun::advance() {
   ++step_;
   if (step_ % kPaceEvery == 0) pace_csv_->row({sim_time_, double(step_), record_->wall_s()});
   return true;
+}
+
+// The rows kept for the steady means and the plots, flattened (kRowValues each).
+constexpr std::size_t kRowValues = 15;
+
+void CouplerRun::save(cosim::CheckpointWriter& out) const {
+  std::vector<double> rows;
+  rows.reserve(kRowValues * rows_.size());
+  for (const Row& r : rows_) {
+    const ForceDecomposition& d = r.d;
+    rows.insert(rows.end(), {r.t, d.traction_force_N, d.motion_resistance_N, d.groove_force_N,
+                             d.vertical_pressure_force_N, d.rolling_resistance_moment_Nm, d.pressure_centre_offset_m,
+                             d.rolling_resistance_force_N, d.drawbar_pull_N, d.net_longitudinal_pressure_force_N,
+                             d.traction_minus_rrf_N, d.sinkage_m, d.contact_area_m2, r.rim_longitudinal_force_N,
+                             r.contact_force_x_N});
+  }
+  out.put("coupler.rows", rows);
+  out.put("coupler.x_m", x_);
+  out.put("coupler.y_m", y_);
+  out.put("coupler.z_m", z_);
+  out.put("coupler.doubles", std::vector<double>{sim_time_, largest_residual_N_, largest_force_N_, exchange_s_,
+                                                 nodes_sent_, facets_sent_, loaded_nodes_, window_s_});
+  out.put("coupler.step", std::vector<std::uint64_t>{step_});
+}
+
+void CouplerRun::restore(const cosim::CheckpointReader& in) {
+  const auto rows = in.get<double>("coupler.rows");
+  if (rows.size() % kRowValues != 0)
+    throw cosim::Error(in.path() + ": coupler.rows: " + std::to_string(rows.size()) + " values are not rows of " +
+                       std::to_string(kRowValues));
+  rows_.clear();
+  for (std::size_t k = 0; k < rows.size(); k += kRowValues) {
+    const double* v = &rows[k];
+    Row r{};
+    r.t = v[0];
+    ForceDecomposition& d = r.d;
+    d.traction_force_N = v[1], d.motion_resistance_N = v[2], d.groove_force_N = v[3];
+    d.vertical_pressure_force_N = v[4], d.rolling_resistance_moment_Nm = v[5], d.pressure_centre_offset_m = v[6];
+    d.rolling_resistance_force_N = v[7], d.drawbar_pull_N = v[8], d.net_longitudinal_pressure_force_N = v[9];
+    d.traction_minus_rrf_N = v[10], d.sinkage_m = v[11], d.contact_area_m2 = v[12];
+    r.rim_longitudinal_force_N = v[13], r.contact_force_x_N = v[14];
+    rows_.push_back(r);
+  }
+  x_ = in.get<double>("coupler.x_m", x_.size());
+  y_ = in.get<double>("coupler.y_m", y_.size());
+  z_ = in.get<double>("coupler.z_m", z_.size());
+  const auto d = in.get<double>("coupler.doubles", 8);
+  sim_time_ = d[0], largest_residual_N_ = d[1], largest_force_N_ = d[2], exchange_s_ = d[3];
+  nodes_sent_ = d[4], facets_sent_ = d[5], loaded_nodes_ = d[6];
+  if (d[7] != window_s_)
+    throw cosim::Error(in.path() + ": the checkpoint's coupling window " + cosim::number_text(d[7]) +
+                       " s is not this run's " + cosim::number_text(window_s_) + " s");
+  step_ = in.get<std::uint64_t>("coupler.step", 1)[0];
 }
 
 void CouplerRun::finalize(cosim::RunRecord& record) {
@@ -413,7 +489,8 @@ void CouplerRun::plots(cosim::RunRecord& record) {
 }  // namespace
 
 nlohmann::json run_hub(Session& session, const cosim::LoadedScene& loaded, const HubOptions& options) {
-  cosim::RunRecord record(loaded, options.out_dir, "coupler");
+  cosim::RunRecord record(loaded, options.out_dir, "coupler", options.restart);
+  if (options.restart_at) record.restart_at(*options.restart_at);
   CouplerRun run(session, loaded, options);
   return cosim::run_participant(run, record, "coupler", options.quiet);
 }

@@ -4,6 +4,8 @@
 // every facet (the one place friction is decided, coupler/friction.hpp), hands
 // them to the terrain, takes the terrain's contact loads, hands them to the
 // tyre and publishes the force decomposition (coupler/forces.hpp).
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -22,6 +24,8 @@ using cosim::coupling::kTyreChannel;
 struct HubOptions {
   std::string out_dir;
   bool quiet = false;
+  bool restart = false;                     // continue from a checkpoint in out_dir
+  std::optional<std::uint64_t> restart_at;  // that of this exchange (else the newest)
 };
 
 // Runs until the tyre stops the run; writes forces.csv and summary.json to

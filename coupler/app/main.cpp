@@ -1,5 +1,6 @@
 // coupler: the synchronising hub of a coupled run (tyre_fe + terrain over DDS).
 //   coupler SCENE --out DIR --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...]
+//           [--restart [--restart-at EXCHANGE]]
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -20,6 +21,8 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_dir, "output folder");
   app.add_option("--set", sets, "override a scene field: field.path=value");
   app.add_flag("--quiet", quiet, "no progress line");
+  cosim::coupling::RestartCli restart;
+  restart.add_to(app);
   cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, false);
   CLI11_PARSE(app, argc, argv);
@@ -30,7 +33,7 @@ int main(int argc, char** argv) {
       throw cosim::Error(scene_file + ": the coupler needs a scene with a `tyre` (or a `tread_block`) and an `sph` terrain");
     cosim::coupling::Session session(coupling.session(cosim::transport::Role::coupler, scene->message));
     try {
-      const auto summary = coupler::run_hub(session, *scene, {out_dir, quiet});
+      const auto summary = coupler::run_hub(session, *scene, {out_dir, quiet, restart.requested(), restart.step()});
       std::printf("%s\n", summary["results"].dump(2).c_str());
       return 0;
     } catch (const std::exception& e) {

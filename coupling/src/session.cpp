@@ -1,5 +1,7 @@
 #include "cosim_coupling/session.hpp"
 
+#include <algorithm>
+
 namespace cosim::coupling {
 
 namespace {
@@ -21,7 +23,7 @@ Session::~Session() {
 }
 
 tp::HandshakeResult Session::join(const std::vector<tp::Role>& peers, double proposed_dt_s,
-                                  const std::vector<tp::Endpoint*>& data_endpoints) {
+                                  const std::vector<tp::Endpoint*>& data_endpoints, std::uint64_t start_exchange) {
   tp::HandshakeOptions h;
   h.run_id = options_.run_id;
   h.self = options_.self;
@@ -29,6 +31,7 @@ tp::HandshakeResult Session::join(const std::vector<tp::Role>& peers, double pro
   h.proposed_time_step_s = proposed_dt_s;
   h.timeout = ms(options_.start_timeout_s);
   h.data_endpoints = data_endpoints;
+  h.start_exchange = start_exchange;
   tp::HandshakeResult r = [&] {
     std::lock_guard<std::mutex> lock(control_mutex_);
     return tp::handshake(*control_out_, *control_in_, h);
@@ -94,8 +97,49 @@ bool Session::control_says_stop(std::string& reason) {
       reason = m.reason;
       return true;
     }
+    if (m.kind == tp::ControlKind::checkpoint_request && options_.self == tp::Role::coupler)
+      checkpoint_requested_ = true;
+    if (m.kind == tp::ControlKind::checkpoint_at) {
+      if (m.sender == tp::Role::coupler && options_.self != tp::Role::coupler) {
+        checkpoint_exchange_ = m.header.step;  // named: echo it, so that the coupler goes on
+        send_control(tp::ControlKind::checkpoint_at, m.header.step, "", 0.0, tp::Role::coupler);
+      } else if (options_.self == tp::Role::coupler && m.header.step == checkpoint_exchange_ &&
+                 std::find(checkpoint_echoes_.begin(), checkpoint_echoes_.end(), m.sender) == checkpoint_echoes_.end()) {
+        checkpoint_echoes_.push_back(m.sender);
+      }
+    }
   }
   return false;
+}
+
+void Session::request_checkpoint_stop() {
+  if (options_.self == tp::Role::coupler) {
+    checkpoint_requested_ = true;
+    return;
+  }
+  send_control(tp::ControlKind::checkpoint_request, 0, "stop signal", 0.0, tp::Role::coupler);
+}
+
+void Session::announce_checkpoint_stop(std::uint64_t exchange, const std::vector<tp::Role>& peers) {
+  using Clock = std::chrono::steady_clock;
+  checkpoint_exchange_ = exchange;
+  checkpoint_echoes_.clear();
+  send_control(tp::ControlKind::checkpoint_at, exchange, "stop at a common checkpoint", 0.0);
+  const auto deadline = Clock::now() + ms(options_.step_timeout_s);
+  auto all_echoed = [&] {
+    for (tp::Role r : peers)
+      if (std::find(checkpoint_echoes_.begin(), checkpoint_echoes_.end(), r) == checkpoint_echoes_.end()) return false;
+    return true;
+  };
+  std::string reason;
+  while (!all_echoed()) {
+    if (control_says_stop(reason)) return;  // the run ended meanwhile; nothing to wait for
+    for (tp::Role r : peers) check_alive(r, exchange, "echo of the checkpoint exchange");
+    if (Clock::now() > deadline)
+      throw cosim::Error("the solvers did not confirm the checkpoint at exchange " + std::to_string(exchange) +
+                         " within " + cosim::number_text(options_.step_timeout_s) + " s");
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
 }
 
 void Session::check_alive(tp::Role from, std::uint64_t step, const char* what) {
@@ -108,12 +152,13 @@ void Session::check_alive(tp::Role from, std::uint64_t step, const char* what) {
                        " of step " + std::to_string(step) + ": it died or hangs");
 }
 
-void Session::send_control(tp::ControlKind kind, std::uint64_t step, const std::string& reason, double agreed_dt_s) {
+void Session::send_control(tp::ControlKind kind, std::uint64_t step, const std::string& reason, double agreed_dt_s,
+                           tp::Role addressee) {
   tp::RunControl m;
   m.header = {options_.run_id, step, 0.0};
   m.kind = kind;
   m.sender = options_.self;
-  m.addressee = tp::Role::any;
+  m.addressee = addressee;
   m.agreed_time_step_s = agreed_dt_s;
   m.reason = reason;
   std::lock_guard<std::mutex> lock(control_mutex_);

@@ -11,25 +11,27 @@ namespace tp = cosim::transport;
 DdsSurfaceExchange::DdsSurfaceExchange(cosim::coupling::Session& session)
     : session_(session), filter_(session.run_id()), mesh_filter_(session.run_id()) {}
 
-double DdsSurfaceExchange::connect(double proposed_dt_s) {
+double DdsSurfaceExchange::connect(double proposed_dt_s, std::uint64_t start_exchange) {
   auto& p = session_.participant();
   mesh_in_ = p.create_reader<tp::SurfaceMesh>();
   kinematics_in_ = p.create_reader<tp::SurfaceKinematics>(cosim::coupling::channel_qos<tp::SurfaceKinematics>(cosim::coupling::kTerrainChannel));
   loads_out_ = p.create_writer<tp::ContactLoads>(cosim::coupling::channel_qos<tp::ContactLoads>(cosim::coupling::kTerrainChannel));
   const tp::HandshakeResult joined =
-      session_.join({tp::Role::coupler}, proposed_dt_s, {mesh_in_.get(), kinematics_in_.get(), loads_out_.get()});
+      session_.join({tp::Role::coupler}, proposed_dt_s, {mesh_in_.get(), kinematics_in_.get(), loads_out_.get()}, start_exchange);
   return session_.wait_for_start(joined);
 }
 
 const cosim::SurfaceState* DdsSurfaceExchange::surface(std::uint64_t exchange) {
-  if (exchange == 0) {
-    // The durable surface mesh is written with the first kinematics.
+  if (!have_mesh_) {
+    // The durable surface mesh (header step 0), written by the tyre when it
+    // joins: before the first kinematics, of a run or of its restart.
     if (!session_.wait_step(*mesh_in_, mesh_filter_, 0, mesh_, "SurfaceMesh", tp::Role::tyre)) return nullptr;
     if (mesh_.x_m.size() != mesh_.node_ids.size())
       throw cosim::Error("SurfaceMesh: x_m has " + std::to_string(mesh_.x_m.size()) + " entries for " +
                          std::to_string(mesh_.node_ids.size()) + " nodes");
     cosim::coupling::from_topic(mesh_, topology_);
     cosim::check_surface_topology(topology_, "SurfaceMesh");
+    have_mesh_ = true;
   }
   if (!session_.wait_step(*kinematics_in_, filter_, exchange, kinematics_, "SurfaceKinematics", tp::Role::coupler))
     return nullptr;

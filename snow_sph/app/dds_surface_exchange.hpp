@@ -15,11 +15,13 @@ namespace snow_sph {
 class DdsSurfaceExchange final : public SurfaceExchange {
  public:
   explicit DdsSurfaceExchange(cosim::coupling::Session& session);
-  double connect(double proposed_dt_s) override;
+  double connect(double proposed_dt_s, std::uint64_t start_exchange) override;
   const cosim::SurfaceState* surface(std::uint64_t exchange) override;
   const cosim::SurfaceTopology& topology() const override { return topology_; }
   void send_loads(const cosim::SurfaceLoads& loads) override;
   void finish(bool failed, const std::string& reason) override;
+  void request_checkpoint_stop() override { session_.request_checkpoint_stop(); }
+  std::uint64_t checkpoint_stop_exchange() const override { return session_.checkpoint_stop_exchange(); }
 
  private:
   cosim::coupling::Session& session_;
@@ -33,6 +35,7 @@ class DdsSurfaceExchange final : public SurfaceExchange {
   cosim::SurfaceTopology topology_;
   cosim::SurfaceState state_;
   std::uint64_t last_exchange_ = 0;
+  bool have_mesh_ = false;
 };
 
 }  // namespace snow_sph

@@ -1,5 +1,5 @@
 // snow_sph: the SPH terrain solver as a program.
-//   snow_sph SCENE --out DIR [--set field.path=value ...] [--check] [--quiet] [--restart]
+//   snow_sph SCENE --out DIR [--set field.path=value ...] [--check] [--quiet] [--restart [--restart-at N]]
 //   snow_sph SCENE --out DIR --coupled --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR]
 // (coupled: the terrain of a coupled run; docs/coupling.md)
 #include <cstdio>
@@ -20,14 +20,15 @@ int main(int argc, char** argv) {
   CLI::App app{"snow_sph: SPH terrain (snow: Drucker-Prager/Cap; water: Us-Up EOS)"};
   std::string scene_file, out_dir = "out";
   std::vector<std::string> sets;
-  bool check = false, quiet = false, no_vtk = false, restart = false;
+  bool check = false, quiet = false, no_vtk = false;
+  cosim::coupling::RestartCli restart;
   app.add_option("scene", scene_file, "scene file (.textproto)")->required();
   app.add_option("--out", out_dir, "output folder");
   app.add_option("--set", sets, "override a scene field: field.path=value");
   app.add_flag("--check", check, "validate the scene and exit");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
-  app.add_flag("--restart", restart, "continue the run in --out from its newest checkpoint");
+  restart.add_to(app);
   cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
       snow_sph::DdsSurfaceExchange exchange(session);
       snow_sph::RunOptions options{out_dir, quiet, !no_vtk};
       options.exchange = &exchange;
+      options.restart = restart.requested(), options.restart_at = restart.step();
       try {
         const auto summary = snow_sph::run_scene(*scene, options);
         cosim::print_results(summary);
@@ -59,7 +61,7 @@ int main(int argc, char** argv) {
 
     }
     snow_sph::RunOptions options{out_dir, quiet, !no_vtk};
-    options.restart = restart;
+    options.restart = restart.requested(), options.restart_at = restart.step();
     const auto summary = snow_sph::run_scene(*scene, options);
     cosim::print_results(summary);
     return 0;

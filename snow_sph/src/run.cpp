@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <memory>
 
@@ -118,9 +119,22 @@ class SphRun final : public cosim::Participant {
     }
   }
   void plots(cosim::RunRecord& record) override;
-  // A terrain on its own; a coupled terrain's checkpoint needs its peers' at the
-  // same exchange (docs/reliability.md).
-  bool can_checkpoint() const override { return port_ == nullptr; }
+  // On its own: every checkpoint_interval_s. Coupled: between windows, at the
+  // exchanges its peers take theirs (docs/reliability.md, "Coupled runs").
+  bool can_checkpoint() const override { return true; }
+  bool coupled() const override { return port_ != nullptr; }
+  // Exchange n's loads sent and the step after it completed: n + 1 exchanges
+  // done, as the coupler and the tyre count them.
+  std::optional<std::uint64_t> exchanges_completed() const override {
+    return port_ && !stopped_ ? std::optional<std::uint64_t>(exchange_ + 1) : std::nullopt;
+  }
+  double coupling_window_s() const override { return port_ ? model_->settings.fixed_dt : 0.0; }
+  bool request_checkpoint_stop() override {
+    if (!port_) return false;
+    port_->request_checkpoint_stop();
+    return true;
+  }
+  std::uint64_t checkpoint_stop_exchange() const override { return port_ ? port_->checkpoint_stop_exchange() : 0; }
   void save(cosim::CheckpointWriter& out) const override;
   void restore(const cosim::CheckpointReader& in) override;
 
@@ -214,7 +228,8 @@ double SphRun::initialize(cosim::RunRecord& record) {
     solver_->set_active_domain(c.active_domain_margin_m(), 0.01, c.active_domain_wake_limit_m());
     solver_->prepare();  // sound speeds and accelerations of the first step
     const double limit = solver_->stability_limit_dt();
-    const double agreed = port_->connect(model.settings.cfl * limit);
+    // A restart joins at its checkpoint's exchange count (the next exchange to make).
+    const double agreed = port_->connect(model.settings.cfl * limit, record.resume_step());
     if (!(agreed > 0) || agreed > limit)
       throw cosim::Error("the agreed coupled time step " + cosim::number_text(agreed) +
                          " s is above the terrain's stable limit " + cosim::number_text(limit) + " s");
@@ -227,7 +242,9 @@ double SphRun::initialize(cosim::RunRecord& record) {
     contact_csv_ = &record.series("terrain_contact.csv",
                                   {"time_s", "force_on_surface_x_N", "force_on_surface_y_N", "force_on_surface_z_N",
                                    "contact_area_m2", "particles_in_contact", "drained_water_particles"});
-    stopped_ = !exchange_surface(0);
+    // Exchange 0 with the particles at t_0; a restart's state and held loads
+    // come from its checkpoint instead.
+    if (record.resume_step() == 0) stopped_ = !exchange_surface(0);
   }
   solver_->initialise();
   energy_csv_ = &record.series("energy.csv", {"time_s", "kinetic_J", "internal_J", "elastic_stored_J",
@@ -514,6 +531,7 @@ void SphRun::plots(cosim::RunRecord& record) {
 
 nlohmann::json run_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
   cosim::RunRecord record(loaded, options.out_dir, "snow_sph", options.restart);
+  if (options.restart_at) record.restart_at(*options.restart_at);
   SphRun run(loaded, options);
   return cosim::run_participant(run, record, loaded.message.name(), options.quiet);
 }

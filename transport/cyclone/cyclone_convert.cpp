@@ -32,8 +32,8 @@ static_assert(cosim_wire_TAG_RIM_CONTACT == static_cast<int>(FacetTag::rim_conta
 static_assert(cosim_wire_TAG_OTHER == static_cast<int>(FacetTag::other));
 static_assert(kFacetTagCount == cosim_wire_TAG_OTHER + 1);
 static_assert(cosim_wire_ROLE_MONITOR == static_cast<int>(Role::monitor) && kRoleCount == cosim_wire_ROLE_MONITOR + 1);
-static_assert(cosim_wire_CONTROL_FAILURE == static_cast<int>(ControlKind::failure) &&
-              kControlKindCount == cosim_wire_CONTROL_FAILURE + 1);
+static_assert(cosim_wire_CONTROL_CHECKPOINT_AT == static_cast<int>(ControlKind::checkpoint_at) &&
+              kControlKindCount == cosim_wire_CONTROL_CHECKPOINT_AT + 1);
 
 namespace {
 

@@ -19,8 +19,8 @@ static_assert(static_cast<int>(cosim_wire::TAG_OTHER) == static_cast<int>(FacetT
 static_assert(kFacetTagCount == cosim_wire::TAG_OTHER + 1);
 static_assert(static_cast<int>(cosim_wire::ROLE_MONITOR) == static_cast<int>(Role::monitor) &&
               kRoleCount == cosim_wire::ROLE_MONITOR + 1);
-static_assert(static_cast<int>(cosim_wire::CONTROL_FAILURE) == static_cast<int>(ControlKind::failure) &&
-              kControlKindCount == cosim_wire::CONTROL_FAILURE + 1);
+static_assert(static_cast<int>(cosim_wire::CONTROL_CHECKPOINT_AT) == static_cast<int>(ControlKind::checkpoint_at) &&
+              kControlKindCount == cosim_wire::CONTROL_CHECKPOINT_AT + 1);
 
 namespace {
 

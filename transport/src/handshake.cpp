@@ -16,11 +16,13 @@ struct PeerState {
   bool heard = false;      // any HELLO/READY of our run from it
   bool confirmed = false;  // READY addressed to us: it has heard us
   double time_step_s = 0.0;
+  std::uint64_t start_exchange = 0;
 };
 
 RunControl message(const HandshakeOptions& o, ControlKind kind, Role addressee) {
   RunControl m;
   m.header.run_id = o.run_id;
+  m.header.step = o.start_exchange;
   m.kind = kind;
   m.sender = o.self;
   m.addressee = addressee;
@@ -99,6 +101,7 @@ HandshakeResult handshake(Writer<RunControl>& writer, Reader<RunControl>& reader
       if (local_ready) send(ControlKind::ready, p->role);  // answer at once, not at the next period
     }
     p->time_step_s = m.proposed_time_step_s;
+    p->start_exchange = m.header.step;
     if (m.kind == ControlKind::ready && m.addressee == o.self) p->confirmed = true;
   }
   // A peer completes on our READY; it has heard us, so its reader is matched
@@ -107,6 +110,12 @@ HandshakeResult handshake(Writer<RunControl>& writer, Reader<RunControl>& reader
   for (Endpoint* e : o.data_endpoints) e->announce();  // peers' readers know our writers now
   writer.wait_for_acknowledgments(std::chrono::milliseconds(1000));
 
+  for (const auto& p : peers)
+    if (p.start_exchange != o.start_exchange)
+      throw Error(std::string("the ") + role_name(p.role) + " starts from exchange " +
+                  std::to_string(p.start_exchange) + " and the " + role_name(o.self) + " from exchange " +
+                  std::to_string(o.start_exchange) +
+                  ": every process of a restarted run must continue from the same checkpoint (--restart-at)");
   result.agreed_time_step_s = o.proposed_time_step_s;
   for (const auto& p : peers) {
     result.peer_time_step_s.push_back(p.time_step_s);

@@ -41,6 +41,8 @@ const char* control_kind_name(ControlKind kind) {
     case ControlKind::stop: return "stop";
     case ControlKind::heartbeat: return "heartbeat";
     case ControlKind::failure: return "failure";
+    case ControlKind::checkpoint_request: return "checkpoint_request";
+    case ControlKind::checkpoint_at: return "checkpoint_at";
   }
   return "?";
 }

@@ -9,29 +9,28 @@ namespace tp = cosim::transport;
 DdsTerrainPort::DdsTerrainPort(cosim::coupling::Session& session)
     : session_(session), filter_(session.run_id()) {}
 
-double DdsTerrainPort::connect(const ContactSurfaceDef& surface, double proposed_dt_s) {
+double DdsTerrainPort::connect(const ContactSurfaceDef& surface, double proposed_dt_s, std::uint64_t start_exchange,
+                               double start_time_s) {
   surface_ = &surface;
   auto& p = session_.participant();
   mesh_out_ = p.create_writer<tp::SurfaceMesh>();
   kinematics_out_ = p.create_writer<tp::SurfaceKinematics>(cosim::coupling::channel_qos<tp::SurfaceKinematics>(cosim::coupling::kTyreChannel));
   wheel_out_ = p.create_writer<tp::WheelState>();
   loads_in_ = p.create_reader<tp::ContactLoads>(cosim::coupling::channel_qos<tp::ContactLoads>(cosim::coupling::kTyreChannel));
-  // The surface, durable: the coupler, the terrain and any late monitor get it
-  // (written with the first exchange, whose header it carries).
   mesh_.node_ids.assign(surface.node_ids.begin(), surface.node_ids.end());
   cosim::coupling::to_topic(surface, mesh_);
   const tp::HandshakeResult joined =
       session_.join({tp::Role::coupler}, proposed_dt_s,
-                    {mesh_out_.get(), kinematics_out_.get(), wheel_out_.get(), loads_in_.get()});
+                    {mesh_out_.get(), kinematics_out_.get(), wheel_out_.get(), loads_in_.get()}, start_exchange);
+  // The surface, durable (step 0 of the run, at the time the tyre joined it or
+  // its restart's): the coupler, the terrain and any late monitor get it.
+  mesh_.header = {session_.run_id(), 0, start_time_s};
+  mesh_out_->write(mesh_);
   return session_.wait_for_start(joined);
 }
 
 void DdsTerrainPort::send(const cosim::SurfaceState& surface, const RimState& rim) {
   const tp::SampleHeader header{session_.run_id(), surface.exchange, surface.time_s};
-  if (surface.exchange == 0) {
-    mesh_.header = header;
-    mesh_out_->write(mesh_);
-  }
   tp::WheelState w;
   w.header = header;
   w.rim_x_m = rim.x, w.rim_z_m = rim.z, w.rotation_angle_rad = rim.angle;

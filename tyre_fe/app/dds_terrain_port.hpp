@@ -14,10 +14,13 @@ namespace tyre_fe {
 class DdsTerrainPort final : public TerrainPort {
  public:
   explicit DdsTerrainPort(cosim::coupling::Session& session);
-  double connect(const ContactSurfaceDef& surface, double proposed_dt_s) override;
+  double connect(const ContactSurfaceDef& surface, double proposed_dt_s, std::uint64_t start_exchange,
+                 double start_time_s) override;
   void send(const cosim::SurfaceState& surface, const RimState& rim) override;
   void receive(std::uint64_t exchange, cosim::SurfaceLoads& loads) override;
   void finish(bool failed, const std::string& reason) override;
+  void request_checkpoint_stop() override { session_.request_checkpoint_stop(); }
+  std::uint64_t checkpoint_stop_exchange() const override { return session_.checkpoint_stop_exchange(); }
 
  private:
   cosim::coupling::Session& session_;

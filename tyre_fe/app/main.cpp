@@ -1,5 +1,5 @@
 // tyre_fe: the explicit FE tyre solver as a program.
-//   tyre_fe SCENE --out DIR [--set field.path=value ...] [--check] [--mesh-only] [--quiet] [--no-vtk] [--restart]
+//   tyre_fe SCENE --out DIR [--set field.path=value ...] [--check] [--mesh-only] [--quiet] [--no-vtk] [--restart [--restart-at N]]
 //   tyre_fe SCENE --out DIR --coupled --run-id HEX [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR]
 // (coupled: on the terrain solver of a coupled run, through the coupler; docs/coupling.md)
 #include <cstdio>
@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
   CLI::App app{"tyre_fe: explicit FE tyre (axisymmetric inflation, 3D pitch model, rigid road)"};
   std::string scene_file, out_dir = "out";
   std::vector<std::string> sets;
-  bool check = false, quiet = false, no_vtk = false, mesh_only = false, restart = false;
+  bool check = false, quiet = false, no_vtk = false, mesh_only = false;
+  cosim::coupling::RestartCli restart;
   app.add_option("scene", scene_file, "scene file (.textproto)")->required();
   app.add_option("--out", out_dir, "output folder");
   app.add_option("--set", sets, "override a scene field: field.path=value");
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   app.add_flag("--mesh-only", mesh_only, "write the meshes and their statistics, do not solve");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
-  app.add_flag("--restart", restart, "continue the run in --out from its newest checkpoint");
+  restart.add_to(app);
   cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
       tyre_fe::DdsTerrainPort port(session);
       tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
       options.terrain = &port;
+      options.restart = restart.requested(), options.restart_at = restart.step();
       try {
         const auto summary = tyre_fe::run_fe_body_scene(*scene, options);
         cosim::print_results(summary);
@@ -62,7 +64,7 @@ int main(int argc, char** argv) {
 
     }
     tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
-    options.restart = restart;
+    options.restart = restart.requested(), options.restart_at = restart.step();
     const auto summary = tyre_fe::run_fe_body_scene(*scene, options);
     cosim::print_results(summary);
     return 0;

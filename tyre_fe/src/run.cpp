@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -89,11 +90,24 @@ class TyreRun final : public cosim::Participant {
     }
   }
   std::string end_status() const override { return at_max_steps_ ? "stopped_at_max_steps" : "completed"; }
-  // The tyre on its own road; on a terrain its checkpoint needs its peers' at the
-  // same exchange (docs/reliability.md). A mesh-only run has nothing to continue.
-  bool can_checkpoint() const override { return port_ == nullptr && !options_.mesh_only && !t_.mesh_only(); }
+  // A mesh-only run has nothing to continue. On a terrain the checkpoints are
+  // taken between coupling windows, at the exchanges its peers take theirs
+  // (docs/reliability.md, "Coupled runs"); none before it has joined.
+  bool can_checkpoint() const override { return !options_.mesh_only && !t_.mesh_only(); }
   void save(cosim::CheckpointWriter& out) const override;
   void restore(const cosim::CheckpointReader& in) override;
+  bool coupled() const override { return port_ != nullptr; }
+  std::optional<std::uint64_t> exchanges_completed() const override {
+    if (!joined_ || s_.terrain.substep != 0) return std::nullopt;
+    return s_.terrain.exchange;
+  }
+  double coupling_window_s() const override { return joined_ ? window_s_ : 0.0; }
+  bool request_checkpoint_stop() override {
+    if (!joined_) return false;
+    port_->request_checkpoint_stop();
+    return true;
+  }
+  std::uint64_t checkpoint_stop_exchange() const override { return port_ ? port_->checkpoint_stop_exchange() : 0; }
 
  private:
   enum Stage { kTransferCheck, kLoading, kRolling, kDone };
@@ -106,6 +120,7 @@ class TyreRun final : public cosim::Participant {
   // A road under the terrain: the road's share of the load against the speed
   // (road_share_vs_speed.csv) and the speeds where it falls below 50, 25 and 10 %.
   void report_hydroplaning(nlohmann::json& results);
+  void rejoin_terrain(const cosim::CheckpointReader& in, double own_dt_s);
   // The road has carried less than the criterion's share (trailing mean) for kAfloatHold_s.
   bool afloat_now();
   void join_terrain();
@@ -143,6 +158,7 @@ class TyreRun final : public cosim::Participant {
   cosim::CsvWriter* csv_ = nullptr;
   cosim::CsvWriter* road_csv_ = nullptr;  // a road under the terrain only
   bool stepping_ = false, failed_ = false, at_max_steps_ = false, joined_ = false;
+  double window_s_ = 0.0;  // the coupling window the coupler agreed
   double next_csv_ = 0.0, csv_interval_ = 0.0;
   std::uint64_t max_steps_ = 0;
   int centre_ = 0;
@@ -291,9 +307,11 @@ void TyreRun::save(cosim::CheckpointWriter& out) const {
   out.put("run.ramp_v", ramp_v_);
   out.put("run.ramp_road_fz", ramp_road_fz_);
   out.put("run.ramp_lift_fz", ramp_lift_fz_);
+  if (joined_) save_terrain_coupling(s_.terrain, window_s_, out);
 }
 
 void TyreRun::restore(const cosim::CheckpointReader& in) {
+  const double own_dt = s_.dt_s;  // the step the tyre proposes when it joins a terrain
   restore_state(in, s_);
   frames_->restore(in);
   const auto d = in.get<double>("run.doubles", run_doubles(*this).size());
@@ -309,6 +327,27 @@ void TyreRun::restore(const cosim::CheckpointReader& in) {
   ramp_v_ = in.get<double>("run.ramp_v", ramp_t_.size());
   ramp_road_fz_ = in.get<double>("run.ramp_road_fz", ramp_t_.size());
   ramp_lift_fz_ = in.get<double>("run.ramp_lift_fz", ramp_t_.size());
+  if (port_ && in.has("coupling.exchange")) rejoin_terrain(in, own_dt);
+}
+
+// A restarted coupled run (docs/reliability.md): the surface the tyre offered
+// when it joined, its place in the exchanges, and the handshake again, at the
+// checkpoint's exchange; the coupler must agree the same window as before.
+void TyreRun::rejoin_terrain(const cosim::CheckpointReader& in, double own_dt_s) {
+  const double saved_dt = s_.dt_s;
+  s_.terrain.surface = make_contact_surface(model_->mesh);
+  const double saved_window = restore_terrain_coupling(in, s_.terrain);
+  const int saved_substeps = s_.terrain.substeps;
+  s_.dt_s = own_dt_s;
+  window_s_ = connect_to_terrain(*port_, s_);
+  if (window_s_ != saved_window || s_.terrain.substeps != saved_substeps || s_.dt_s != saved_dt)
+    throw cosim::Error(in.path() + ": the coupling window agreed now (" + cosim::number_text(window_s_) + " s, " +
+                       std::to_string(s_.terrain.substeps) + " sub-steps) is not the checkpoint's (" +
+                       cosim::number_text(saved_window) + " s, " + std::to_string(saved_substeps) + ")");
+  s_.time_stages = true;
+  joined_ = true;
+  coupled_from_step_ = s_.step;
+  coupled_from_wall_ = record_->wall_s();
 }
 
 // The exchange, at a coupling window's start (docs/coupling.md): the surface
@@ -420,6 +459,7 @@ void TyreRun::join_terrain() {
   const double window = connect_to_terrain(*port_, s_);
   s_.time_stages = true;  // the exchange's share of the wall time (summary "performance")
   joined_ = true;
+  window_s_ = window;
   coupled_from_step_ = s_.step;
   coupled_from_wall_ = record_->wall_s();
   nlohmann::json& summary = record_->summary();
@@ -681,6 +721,7 @@ void TyreRun::finalize(cosim::RunRecord& record) {
 
 nlohmann::json run_tyre_scene(const cosim::LoadedScene& loaded, const RunOptions& options) {
   cosim::RunRecord record(loaded, options.out_dir, "tyre_fe", options.restart);
+  if (options.restart_at) record.restart_at(*options.restart_at);
   TyreRun run(loaded, options);
   return cosim::run_participant(run, record, loaded.message.name(), options.quiet);
 }

@@ -274,7 +274,7 @@ bool step3d(const Model3d& m, State3d& s, const RimDrive& drive) {
 }
 
 double connect_to_terrain(TerrainPort& port, State3d& s) {
-  const double window = port.connect(s.terrain.surface, s.dt_s);
+  const double window = port.connect(s.terrain.surface, s.dt_s, s.terrain.exchange, s.time_s);
   s.terrain.substeps = cosim::substeps_per_window(window, s.dt_s);
   s.dt_s = window / s.terrain.substeps;
   return window;

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "cosim/error.hpp"
+
 namespace tyre_fe {
 namespace {
 
@@ -54,6 +56,35 @@ void restore_state(const cosim::CheckpointReader& in, State3d& s) {
   s.road.in_contact.assign(contact.begin(), contact.end());
   const auto flags = in.get<std::uint64_t>("tyre.flags", 2);
   s.step = flags[0], s.road.present = flags[1] != 0;
+}
+
+void save_terrain_coupling(const TerrainCoupling& t, double window_s, cosim::CheckpointWriter& out) {
+  if (t.substep != 0) throw cosim::Error("a coupled tyre's checkpoint is taken between windows only");
+  out.put("coupling.surface_x_m", t.surface.x_m);
+  out.put("coupling.surface_y_m", t.surface.y_m);
+  out.put("coupling.surface_z_m", t.surface.z_m);
+  out.put("coupling.surface_node_mass_kg", t.surface.node_mass_kg);
+  out.put("coupling.exchange", std::vector<std::uint64_t>{t.exchange, static_cast<std::uint64_t>(t.substeps)});
+  out.put("coupling.doubles",
+          std::vector<double>{window_s, t.band_m, t.load_totals.force_N[0], t.load_totals.force_N[1],
+                              t.load_totals.force_N[2], t.load_totals.contact_area_m2, t.impulse_Ns[0], t.impulse_Ns[1],
+                              t.impulse_Ns[2], t.window_impulse_Ns[0], t.window_impulse_Ns[1], t.window_impulse_Ns[2]});
+}
+
+double restore_terrain_coupling(const cosim::CheckpointReader& in, TerrainCoupling& t) {
+  const std::size_t n = t.surface.node_ids.size();
+  t.surface.x_m = in.get<double>("coupling.surface_x_m", n);
+  t.surface.y_m = in.get<double>("coupling.surface_y_m", n);
+  t.surface.z_m = in.get<double>("coupling.surface_z_m", n);
+  t.surface.node_mass_kg = in.get<double>("coupling.surface_node_mass_kg", n);
+  const auto e = in.get<std::uint64_t>("coupling.exchange", 2);
+  t.exchange = e[0], t.substeps = static_cast<int>(e[1]), t.substep = 0;
+  const auto d = in.get<double>("coupling.doubles", 12);
+  t.band_m = d[1];
+  t.load_totals.force_N = {d[2], d[3], d[4]};
+  t.load_totals.contact_area_m2 = d[5];
+  for (int c = 0; c < 3; ++c) t.impulse_Ns[c] = d[6 + c], t.window_impulse_Ns[c] = d[9 + c];
+  return d[0];
 }
 
 }  // namespace tyre_fe

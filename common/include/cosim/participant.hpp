@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,14 @@ class RunRecord {
   std::uint64_t scene_hash() const { return scene_hash_; }
   // Scene output.checkpoint_interval_s (0: only on a stop signal).
   double checkpoint_interval_s() const { return checkpoint_interval_s_; }
+  // Restart from the checkpoint of this step (a coupled run: this exchange)
+  // rather than the newest; every process of a coupled run is given the same.
+  void restart_at(std::uint64_t step) { restart_at_ = step; }
+  const std::optional<std::uint64_t>& restart_at() const { return restart_at_; }
+  // The step (coupled: exchange) of the checkpoint the run resumes from; set
+  // by run_participant before initialize() (0 for a run from the start).
+  std::uint64_t resume_step() const { return resume_step_; }
+  void set_resume_step(std::uint64_t step) { resume_step_ = step; }
   // The record into a checkpoint (the series' lengths, the summary so far), and
   // back: each series cut to its length then, the summary's results restored.
   void save(CheckpointWriter& out);
@@ -76,6 +85,8 @@ class RunRecord {
  private:
   std::string out_dir_, program_;
   bool restart_ = false;
+  std::optional<std::uint64_t> restart_at_;
+  std::uint64_t resume_step_ = 0;
   std::uint64_t scene_hash_ = 0;
   double checkpoint_interval_s_ = 0.0;
   ResultReferences references_;  // the scene's
@@ -121,6 +132,21 @@ class Participant {
   virtual bool can_checkpoint() const { return false; }
   virtual void save(CheckpointWriter& out) const { (void)out; }
   virtual void restore(const CheckpointReader& in) { (void)in; }
+
+  // A coupled participant (docs/reliability.md, "Coupled runs") checkpoints
+  // between coupling windows, at the same count of completed exchanges in
+  // every process of the run (every round(checkpoint_interval_s / window)
+  // exchanges), and its checkpoints are numbered by that count.
+  virtual bool coupled() const { return false; }
+  // The exchanges completed when the participant stands between two windows
+  // of the coupled run; nullopt otherwise (not joined yet, inside a window).
+  virtual std::optional<std::uint64_t> exchanges_completed() const { return std::nullopt; }
+  virtual double coupling_window_s() const { return 0.0; }
+  // A stop signal: ask the run for a stop at a common checkpoint; false if
+  // this participant cannot (it has not joined the run yet).
+  virtual bool request_checkpoint_stop() { return false; }
+  // The exchange the run stops at for a restart, once named (0: none).
+  virtual std::uint64_t checkpoint_stop_exchange() const { return 0; }
 };
 
 // Runs a participant under the skeleton; returns the summary (also written to

@@ -53,6 +53,7 @@ struct ChildResult {
   int exit_code = 0;          // 128 + signal if killed
   double ended_after_s = 0.0;  // since the start
   bool terminated_by_us = false;
+  bool signal_forwarded = false;  // a stop signal to this process was passed on to the children
 };
 std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, double grace_s);
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,22 @@ namespace cosim::coupling {
   std::fflush(nullptr);
   std::_Exit(2);
 }
+
+// --restart and --restart-at, the same in the three programs (docs/reliability.md).
+struct RestartCli {
+  bool restart = false;
+  long long at = -1;  // --restart-at: the checkpoint of this step (coupled: exchange)
+
+  void add_to(CLI::App& app) {
+    app.add_flag("--restart", restart, "continue the run in --out from its newest checkpoint");
+    app.add_option("--restart-at", at,
+                   "continue from the checkpoint of this step (a coupled run: this exchange; implies --restart)");
+  }
+  bool requested() const { return restart || at >= 0; }
+  std::optional<std::uint64_t> step() const {
+    return at >= 0 ? std::optional<std::uint64_t>(static_cast<std::uint64_t>(at)) : std::nullopt;
+  }
+};
 
 struct CouplingCli {
   bool coupled = false;

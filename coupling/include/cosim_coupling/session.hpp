@@ -68,9 +68,10 @@ class Session {
   std::uint64_t run_id() const { return options_.run_id; }
 
   // Start handshake with `peers` (this side's data endpoints must all be matched);
-  // then the heartbeat starts.
+  // then the heartbeat starts. `start_exchange`: the exchange this process
+  // continues from (0; a restart: its checkpoint's); every peer must say the same.
   tp::HandshakeResult join(const std::vector<tp::Role>& peers, double proposed_dt_s,
-                           const std::vector<tp::Endpoint*>& data_endpoints);
+                           const std::vector<tp::Endpoint*>& data_endpoints, std::uint64_t start_exchange = 0);
   // Solvers: the common step announced by the coupler's START (perhaps already
   // received during the handshake).
   double wait_for_start(const tp::HandshakeResult& joined);
@@ -89,6 +90,18 @@ class Session {
   void send_stop(std::uint64_t step, const std::string& reason);
   void send_failure(std::uint64_t step, const std::string& reason);
 
+  // A stop at a common checkpoint (docs/reliability.md, "Coupled runs"). Each
+  // process that gets a stop signal asks for one; the coupler, at the start of
+  // an exchange s, names s + 1 to every solver and waits until each has echoed
+  // it (they are all waiting on the coupler's samples of s then, and cannot pass
+  // s + 1 before the coupler forwards them); every process then checkpoints
+  // when it has completed s + 1 exchanges and stops.
+  void request_checkpoint_stop();           // a solver (or the coupler itself)
+  bool checkpoint_stop_requested() const { return checkpoint_requested_; }  // coupler
+  void announce_checkpoint_stop(std::uint64_t exchange, const std::vector<tp::Role>& peers);  // coupler
+  // The exchange named (0: none yet).
+  std::uint64_t checkpoint_stop_exchange() const { return checkpoint_exchange_; }
+
   // Samples dropped because of another run id or an unexpected step (all waits).
   std::uint64_t rejected_run_id() const { return rejected_run_id_; }
   std::uint64_t rejected_step() const { return rejected_step_; }
@@ -99,7 +112,8 @@ class Session {
   bool control_says_stop(std::string& reason);
   // Throws if `from` has not been heard for heartbeat_timeout_s.
   void check_alive(tp::Role from, std::uint64_t step, const char* what);
-  void send_control(tp::ControlKind kind, std::uint64_t step, const std::string& reason, double agreed_dt_s);
+  void send_control(tp::ControlKind kind, std::uint64_t step, const std::string& reason, double agreed_dt_s,
+                    tp::Role addressee = tp::Role::any);
 
   SessionOptions options_;
   std::unique_ptr<tp::Participant> participant_;
@@ -108,6 +122,9 @@ class Session {
   tp::SampleFilter control_filter_;
   std::vector<tp::RunControl> pending_;  // non-handshake control samples seen during the handshake
   std::uint64_t rejected_run_id_ = 0, rejected_step_ = 0;
+  bool checkpoint_requested_ = false;
+  std::uint64_t checkpoint_exchange_ = 0;
+  std::vector<tp::Role> checkpoint_echoes_;  // coupler: solvers that echoed checkpoint_exchange_
   std::mutex control_mutex_;  // the heartbeat thread and the main thread share control_out_
   std::map<tp::Role, std::chrono::steady_clock::time_point> last_heard_;
   std::atomic<bool> stop_heartbeat_{false};

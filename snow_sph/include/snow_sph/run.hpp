@@ -1,4 +1,6 @@
 #pragma once
+#include <cstdint>
+#include <optional>
 // Running an SPH scene end to end: model -> step loop -> outputs
 // (summary.json, CSV time series, VTK). See docs/outputs.md for the files.
 #include <string>
@@ -16,6 +18,9 @@ struct RunOptions {
   bool write_vtk = true;    // false: skip VTK even if the scene asks (tests)
   // Continue the run in out_dir from its newest checkpoint (docs/reliability.md).
   bool restart = false;
+  // With restart: the checkpoint of this step (a coupled run: this exchange)
+  // instead of the newest; `cosim run --restart` gives every process the same.
+  std::optional<std::uint64_t> restart_at;
   // Non-null: the terrain of a coupled run; it runs until the surface's owner
   // ends the run, with the common step agreed through the exchange.
   SurfaceExchange* exchange = nullptr;

@@ -20,8 +20,9 @@ namespace snow_sph {
 class SurfaceExchange {
  public:
   virtual ~SurfaceExchange() = default;
-  // Once, before initialise(): this solver's stable step in, the common step out.
-  virtual double connect(double proposed_dt_s) = 0;
+  // Once, before initialise(): this solver's stable step in, the common step
+  // out. `start_exchange`: 0, or a restart's first exchange (every peer must agree).
+  virtual double connect(double proposed_dt_s, std::uint64_t start_exchange) = 0;
   // The surface's state at exchange n; null when the owner of the surface ended the run.
   virtual const cosim::SurfaceState* surface(std::uint64_t exchange) = 0;
   // The surface's topology, once the first surface() has returned.
@@ -30,6 +31,10 @@ class SurfaceExchange {
   virtual void send_loads(const cosim::SurfaceLoads& loads) = 0;
   // End of the run: normal stop (failed = false) or failure with a reason.
   virtual void finish(bool failed, const std::string& reason) = 0;
+  // A stop signal: asks the run for a stop at a common checkpoint; the exchange
+  // named for it once known (0: none yet; docs/reliability.md).
+  virtual void request_checkpoint_stop() = 0;
+  virtual std::uint64_t checkpoint_stop_exchange() const = 0;
 };
 
 }  // namespace snow_sph

@@ -36,6 +36,10 @@ struct HandshakeOptions {
   // This side's data writers and readers (not the RunControl ones): each must
   // have matched at least one remote endpoint before we say READY.
   std::vector<Endpoint*> data_endpoints;
+  // The exchange this process starts from (0; a restart: its checkpoint's),
+  // sent in every HELLO/READY's header.step: a peer starting elsewhere is an
+  // error naming both, for a run restarted from different checkpoints cannot go on.
+  std::uint64_t start_exchange = 0;
 };
 
 struct HandshakeResult {

@@ -23,8 +23,12 @@ enum class Role : std::uint8_t { any, tyre, terrain, coupler, monitor };
 constexpr int kRoleCount = 5;
 const char* role_name(Role role);  // "any", "tyre", "terrain", "coupler", "monitor"
 
-enum class ControlKind : std::uint8_t { hello, ready, start, stop, heartbeat, failure };
-constexpr int kControlKindCount = 6;
+enum class ControlKind : std::uint8_t {
+  hello, ready, start, stop, heartbeat, failure,
+  checkpoint_request,  // a solver asks the coupler for a stop at a common checkpoint
+  checkpoint_at        // the coupler names its exchange (header.step); the solvers echo it
+};
+constexpr int kControlKindCount = 8;
 const char* control_kind_name(ControlKind kind);
 
 // First field of every sample.

@@ -1,4 +1,6 @@
 #pragma once
+#include <cstdint>
+#include <optional>
 // Running a tyre scene end to end: cross-section -> axisymmetric inflation ->
 // revolve (results transfer) -> 3D check at rest -> loading on the road ->
 // rolling, with summary.json, CSV time series, VTK and PNG outputs
@@ -19,6 +21,9 @@ struct RunOptions {
   bool mesh_only = false;  // also set by the scene's tyre.mesh_only
   // Continue the run in out_dir from its newest checkpoint (docs/reliability.md).
   bool restart = false;
+  // With restart: the checkpoint of this step (a coupled run: this exchange)
+  // instead of the newest; `cosim run --restart` gives every process the same.
+  std::optional<std::uint64_t> restart_at;
   // Non-null: the tyre runs on this terrain solver instead of its rigid road
   // (the coupled executable passes its DDS port).
   TerrainPort* terrain = nullptr;

@@ -156,6 +156,7 @@ bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
 // Joins a terrain solver: offers s.terrain.surface and the stable step s.dt_s
 // through the port, and fills the coupling window the coupler answers with equal
 // sub-steps no larger than the stable step (s.dt_s, s.terrain.substeps). Returns the window.
+// A restart joins at its checkpoint's exchange (s.terrain.exchange) and time.
 double connect_to_terrain(TerrainPort& port, State3d& s);
 // One step on a terrain (docs/coupling.md): at a coupling window's start
 //   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,

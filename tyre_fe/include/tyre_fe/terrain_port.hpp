@@ -47,13 +47,20 @@ class TerrainPort {
   virtual ~TerrainPort() = default;
   // Once, before the first coupled step: offers the surface and this solver's
   // stable step; returns the common step every participant will use.
-  virtual double connect(const ContactSurfaceDef& surface, double proposed_dt_s) = 0;
+  // `start_exchange`, `start_time_s`: where the run starts (a restart: its
+  // checkpoint's exchange and time; every peer must start at that exchange).
+  virtual double connect(const ContactSurfaceDef& surface, double proposed_dt_s, std::uint64_t start_exchange,
+                         double start_time_s) = 0;
   // The surface near the terrain at exchange surface.exchange (0, 1, ...), and the rim.
   virtual void send(const cosim::SurfaceState& surface, const RimState& rim) = 0;
   // The loads of the same exchange; throws cosim::Error if the terrain is gone.
   virtual void receive(std::uint64_t exchange, cosim::SurfaceLoads& loads) = 0;
   // End of the run: normal stop (failed = false) or failure with a reason.
   virtual void finish(bool failed, const std::string& reason) = 0;
+  // A stop signal: asks the run for a stop at a common checkpoint; the exchange
+  // named for it once known (0: none yet; docs/reliability.md).
+  virtual void request_checkpoint_stop() = 0;
+  virtual std::uint64_t checkpoint_stop_exchange() const = 0;
 };
 
 // A run that failed tells its peers through its port, if it has one; never throws
