@@ -4,7 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <optional>
 
 #include "coupler/facet_geometry.hpp"
@@ -119,7 +123,10 @@ class CouplerRun final : public cosim::Participant {
   tp::SurfaceKinematics k_;
   tp::WheelState wheel_;
   tp::ContactLoads loads_;
-  std::vector<Row> rows_;
+  // The rows of the last averaging_window_s_ of the run (all of them if it is
+  // 0): what the steady means need; memory stays flat over a long run.
+  std::deque<Row> rows_;
+  double averaging_window_s_ = 0.0;
   double largest_residual_N_ = 0.0, largest_force_N_ = 0.0;  // of the decomposition, over the steps
   FacetLoads last_facets_;
   DecompositionOptions decomposition_;
@@ -197,6 +204,9 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   cosim::check_surface_topology(topology_, "SurfaceMesh");
   fill_facet_friction(topology_.facet_tags, sipes, terrain, rules, mu_all_);
   x_ = topology_.x_m, y_ = topology_.y_m, z_ = topology_.z_m;
+  // Steady means over the last average_last_s of the run (thesis 6.1: results
+  // "taken at the steady state region").
+  averaging_window_s_ = c.average_last_s() > 0 ? c.average_last_s() : scene_.tyre().stages().average_last_s();
   rolling_radius_ = c.rolling_radius_m();
   record.results()["rolling_radius_for_F5_m"] = rolling_radius_;
   record.results()["rolling_radius_source"] = c.rolling_radius_source().empty() ? "scene" : c.rolling_radius_source();
@@ -273,13 +283,35 @@ bool CouplerRun::advance() {
              d.contact_area_m2, wheel_.rim_x_m, wheel_.rim_z_m, wheel_.spin_rate_radps, wheel_.applied_torque_Nm,
              wheel_.reaction_moment_y_Nm, fx, fz, wheel_.rim_longitudinal_force_N});
   rows_.push_back({sim_time_, d, wheel_.rim_longitudinal_force_N, fx});
+  if (averaging_window_s_ > 0)  // the means read the rows of t >= the last t - window (finalize)
+    while (rows_.front().t < rows_.back().t - averaging_window_s_) rows_.pop_front();
   last_facets_ = facet_loads;
   ++step_;
   if (step_ % kPaceEvery == 0) pace_csv_->row({sim_time_, double(step_), record_->wall_s()});
   return true;
 }
 
-// The rows kept for the steady means and the plots, flattened (kRowValues each).
+// Columns time_s and F3, F1, F2, F5, drawbar pull (0-based 0, 2, 3, 4, 7, 8) of
+// forces.csv, streamed (a long run's file has a row per window); false if unreadable.
+bool read_force_columns(const std::string& path, std::vector<double>& t, std::vector<std::vector<double>>& forces) {
+  std::ifstream in(path);
+  if (!in) return false;
+  std::string line, cell;
+  std::getline(in, line);  // header
+  const int wanted[5] = {2, 3, 4, 7, 8};
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    double v[9];
+    int k = 0;
+    for (; k < 9 && std::getline(row, cell, ','); ++k) v[k] = std::strtod(cell.c_str(), nullptr);
+    if (k < 9) return false;
+    t.push_back(v[0]);
+    for (int j = 0; j < 5; ++j) forces[j].push_back(v[wanted[j]]);
+  }
+  return true;
+}
+
+// The rows kept for the steady means, flattened (kRowValues each).
 constexpr std::size_t kRowValues = 15;
 
 void CouplerRun::save(cosim::CheckpointWriter& out) const {
@@ -339,10 +371,7 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
     if (f) session_.count_rejections(*f);
   summary["rejected_samples"] = {{"other_run", session_.rejected_run_id()}, {"wrong_step", session_.rejected_step()}};
   if (!joined_) return;
-  const auto& c = scene_.coupling();
-  // Steady means over the last average_last_s of the run (thesis 6.1: results
-  // "taken at the steady state region").
-  const double window = c.average_last_s() > 0 ? c.average_last_s() : scene_.tyre().stages().average_last_s();
+  const double window = averaging_window_s_;
   const double from = rows_.empty() ? 0.0 : rows_.back().t - window;
   ForceDecomposition mean;
   double rim_fx = 0.0, contact_fx = 0.0;
@@ -440,19 +469,14 @@ void CouplerRun::plots(cosim::RunRecord& record) {
   record.plot_map("contact_pressure.csv", "contact_pressure.png", 1, 2, 4,
                   name + ": contact pressure on the tyre (last step, seen from above)", "x [m]", "y [m]",
                   "pressure [Pa]");
-  if (rows_.empty()) return;
   // The raw per-step forces swing by +-1000 N on a coarse scene as particles
   // enter and leave contact: a centred moving mean is drawn over them, and the
-  // averaging window of the results is shaded.
+  // averaging window of the results is shaded. Read back from forces.csv (the
+  // run keeps only its averaging window's rows): time and F3, F1, F2, F5, drawbar pull.
   const double filter_s = scene_.coupling().force_plot_filter_s();
   std::vector<double> t;
   std::vector<std::vector<double>> raw(5);
-  for (const auto& r : rows_) {
-    t.push_back(r.t);
-    const double v[5] = {r.d.traction_force_N, r.d.motion_resistance_N, r.d.groove_force_N,
-                         r.d.rolling_resistance_force_N, r.d.drawbar_pull_N};
-    for (int k = 0; k < 5; ++k) raw[k].push_back(v[k]);
-  }
+  if (!read_force_columns(record.path("forces.csv"), t, raw) || t.empty()) return;
   std::vector<std::vector<double>> filtered;
   for (const auto& series : raw) filtered.push_back(cosim::centred_moving_mean(t, series, filter_s));
   {
