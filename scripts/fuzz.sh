@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-25}
-TARGETS=(fuzz_scene fuzz_checkpoint)
+TARGETS=(fuzz_scene fuzz_checkpoint fuzz_samples)
 cmake -S . -B build-fuzz -DCOSIM_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER="${FUZZ_CXX:-clang++-14}" -DCMAKE_C_COMPILER="${FUZZ_CC:-clang-14}" >/dev/null
 cmake --build build-fuzz -j "${JOBS:-$(nproc)}" --target "${TARGETS[@]}"

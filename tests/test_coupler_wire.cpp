@@ -2,8 +2,11 @@
 // topic structs and the coupler's inputs/outputs (coupler/facet_geometry.hpp, wire.hpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cosim/error.hpp"
 #include "coupler/wire.hpp"
+#include "test_paths.hpp"
 
 using coupler::FacetTag;
 
@@ -85,4 +88,18 @@ TEST(CouplerWire, ContactLoadsBecomeFacetLoadsAndASummary) {
 
   c.facets[0] = 3;  // out of range
   EXPECT_THROW(coupler::facet_loads_from_contact(c, s.tags, g), cosim::Error);
+}
+
+// A wheel state with a NaN or an infinity is refused naming its field (the
+// coupler would otherwise write NaN forces for the rest of the run).
+TEST(CouplerWire, AWheelStateThatIsNotFiniteIsRefusedByField) {
+  cosim::transport::WheelState w;
+  w.rim_x_m = 1.0, w.spin_rate_radps = 7.0;
+  EXPECT_NO_THROW(coupler::check_wheel_state(w, "WheelState of step 3"));
+  w.reaction_moment_y_Nm = std::nan("");
+  EXPECT_EQ(test_support::error_of([&] { coupler::check_wheel_state(w, "WheelState of step 3"); }),
+            "WheelState of step 3: reaction_moment_y_Nm is not a finite number");
+  w.reaction_moment_y_Nm = 0.0, w.rim_z_m = -HUGE_VAL;
+  EXPECT_EQ(test_support::error_of([&] { coupler::check_wheel_state(w, "WheelState of step 3"); }),
+            "WheelState of step 3: rim_z_m is not a finite number");
 }

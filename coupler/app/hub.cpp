@@ -206,7 +206,10 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   x_ = topology_.x_m, y_ = topology_.y_m, z_ = topology_.z_m;
   // Steady means over the last average_last_s of the run (thesis 6.1: results
   // "taken at the steady state region").
-  averaging_window_s_ = c.average_last_s() > 0 ? c.average_last_s() : scene_.tyre().stages().average_last_s();
+  // The FE body's own window where the coupling names none: the tyre's stages' or the block's.
+  const double body_window = scene_.has_tread_block() ? scene_.tread_block().average_last_s()
+                                                      : scene_.tyre().stages().average_last_s();
+  averaging_window_s_ = c.average_last_s() > 0 ? c.average_last_s() : body_window;
   rolling_radius_ = c.rolling_radius_m();
   record.results()["rolling_radius_for_F5_m"] = rolling_radius_;
   record.results()["rolling_radius_source"] = c.rolling_radius_source().empty() ? "scene" : c.rolling_radius_source();
@@ -254,6 +257,7 @@ bool CouplerRun::advance() {
   nodes_sent_ += k_.nodes.size(), facets_sent_ += k_.facets.size();
   // Exchange, in: the wheel and the terrain's loads of this window; out: the loads to the tyre.
   if (!session_.wait_step(*wheel_in_, *wheel_filter_, step_, wheel_, "WheelState", tp::Role::tyre)) return false;
+  check_wheel_state(wheel_, "WheelState of step " + std::to_string(step_));
   if (!session_.wait_step(*terrain_loads_in_, *terrain_filter_, step_, loads_, "ContactLoads", tp::Role::terrain))
     return false;
   cosim::coupling::from_topic(loads_, checked_loads_);

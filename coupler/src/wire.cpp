@@ -1,7 +1,9 @@
 // Conversions between topic structs and coupler inputs/outputs; see wire.hpp.
 #include "coupler/wire.hpp"
 
+#include <cmath>
 #include <string>
+#include <utility>
 
 #include "cosim/error.hpp"
 
@@ -39,6 +41,16 @@ FacetLoads facet_loads_from_contact(const cosim::transport::ContactLoads& c, con
     l.contact_area_m2[k] = c.contact_area_m2[k];
   }
   return l;
+}
+
+void check_wheel_state(const cosim::transport::WheelState& w, const std::string& what) {
+  const std::pair<const char*, double> fields[] = {
+      {"rim_x_m", w.rim_x_m}, {"rim_z_m", w.rim_z_m}, {"rotation_angle_rad", w.rotation_angle_rad},
+      {"forward_speed_mps", w.forward_speed_mps}, {"spin_rate_radps", w.spin_rate_radps},
+      {"applied_torque_Nm", w.applied_torque_Nm}, {"reaction_moment_y_Nm", w.reaction_moment_y_Nm},
+      {"wheel_load_N", w.wheel_load_N}, {"rim_longitudinal_force_N", w.rim_longitudinal_force_N}};
+  for (const auto& [name, value] : fields)
+    if (!std::isfinite(value)) throw cosim::Error(what + ": " + name + " is not a finite number");
 }
 
 WheelInput wheel_input(const cosim::transport::WheelState& w, double rolling_radius_m) {

@@ -1,6 +1,8 @@
 #pragma once
 // Between the neutral topic structs (cosim_transport/topics.hpp, mirrors of
 // idl/cosim_topics.idl) and the coupler's physics inputs and outputs.
+#include <string>
+
 #include "coupler/facet_geometry.hpp"
 #include "coupler/forces.hpp"
 #include "cosim_transport/topics.hpp"
@@ -14,6 +16,9 @@ namespace coupler {
 // mismatches or facet indices out of range.
 FacetLoads facet_loads_from_contact(const cosim::transport::ContactLoads& loads, const std::vector<FacetTag>& tags,
                                     const FacetGeometry& geometry);
+
+// Throws cosim::Error naming `what` and the field if a value is not finite.
+void check_wheel_state(const cosim::transport::WheelState& wheel, const std::string& what);
 
 // The rim state the decomposition needs, with the rolling radius r (eq. 5.1).
 WheelInput wheel_input(const cosim::transport::WheelState& wheel, double rolling_radius_m);
