@@ -94,10 +94,11 @@ awk -F, -v warm=$((WINDOWS / 10)) '
              100 * (hi[k] - start[k]) / start[k]
   }' "$OUT/soak.csv" | tee "$OUT/soak_summary.txt"
 gnuplot <<EOF 2>/dev/null || true
-set terminal pngcairo size 900,500
+set terminal pngcairo size 900,500 noenhanced
 set output "$OUT/soak.png"
 set datafile separator ","
-set key autotitle columnhead top left
+set key bottom right
+set yrange [0:*]
 set xlabel "coupling windows"
 set ylabel "resident memory [MB]"
 set title "Soak: the sliding block, $done_windows windows, $MONITORS monitor visits (windows $first_visit-$last_visit)"
