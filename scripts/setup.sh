@@ -29,5 +29,6 @@ if ((${#missing[@]})); then
 fi
 
 JOBS=${JOBS:-$(nproc)}
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# COSIM_WERROR=ON (CI): compiler warnings fail the build.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCOSIM_WERROR="${COSIM_WERROR:-OFF}" >/dev/null
 cmake --build build -j "$JOBS"

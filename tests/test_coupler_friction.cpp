@@ -43,7 +43,9 @@ TEST(CouplerFriction, SipeTreadTopGetsEquivalentCoefficientOnSnow) {
     EXPECT_EQ(coupler::facet_mu(FacetTag::tread_top, true, snow, rules), 0.45);   // 6.1: tread top with sipes
     EXPECT_EQ(coupler::facet_mu(FacetTag::tread_top, false, snow, rules), 0.3);   // 6.1: block tread, smooth cap
     for (FacetTag t : kAllTags) {
-      if (t != FacetTag::tread_top) EXPECT_EQ(coupler::facet_mu(t, true, snow, rules), 0.3);  // "other surfaces 0.3"
+      if (t != FacetTag::tread_top) {
+        EXPECT_EQ(coupler::facet_mu(t, true, snow, rules), 0.3);  // "other surfaces 0.3"
+      }
     }
   }
 }

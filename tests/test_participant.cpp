@@ -20,7 +20,7 @@ namespace {
 
 class Counter final : public cosim::Participant {
  public:
-  explicit Counter(int fail_at) : fail_at_(fail_at) {}
+  explicit Counter(std::uint64_t fail_at) : fail_at_(fail_at) {}  // 0: never
   double initialize(cosim::RunRecord& record) override {
     csv_ = &record.series("count.csv", {"time_s", "step"});
     return 5.0;
@@ -38,7 +38,7 @@ class Counter final : public cosim::Participant {
   void finish_peers() override { ++stops_; }
   void abort(const std::string& reason) noexcept override { abort_reason_ = reason; }
 
-  int fail_at_;
+  std::uint64_t fail_at_;
   std::uint64_t step_ = 0;
   int stops_ = 0;
   std::string abort_reason_;

@@ -62,7 +62,9 @@ TEST(SceneValidation, ValidSceneIsAccepted) {
 
 TEST(SceneValidation, EveryShippedSceneIsValid) {
   for (const auto& entry : std::filesystem::recursive_directory_iterator(test_support::source_dir() + "/configs/scenes"))
-    if (entry.path().extension() == ".textproto") EXPECT_EQ(error_of(entry.path().string()), "") << entry.path();
+    if (entry.path().extension() == ".textproto") {
+      EXPECT_EQ(error_of(entry.path().string()), "") << entry.path();
+    }
 }
 
 TEST(SceneValidation, UnknownFieldNamesLineAndSuggests) {

@@ -26,7 +26,9 @@ TEST(CentredMovingMean, ReproducesAStraightLineInside) {
   const double window = 0.01005;
   const auto m = cosim::centred_moving_mean(t, v, window);
   for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] > window && t[i] < t.back() - window) EXPECT_NEAR(m[i], v[i], 1e-12 * std::fabs(v[i])) << i;
+    if (t[i] > window && t[i] < t.back() - window) {
+      EXPECT_NEAR(m[i], v[i], 1e-12 * std::fabs(v[i])) << i;
+    }
 }
 
 TEST(CentredMovingMean, ASineIsDampedByTheMovingAveragesTransferFunction) {

@@ -639,7 +639,9 @@ TEST(Quad4AxiTwist, RigidRotationAboutTheAxisChangesNothing) {
       EXPECT_NEAR(f1[i][0], f0[i][0], kRoundOff * scale);
       EXPECT_NEAR(f1[i][1], f0[i][1], kRoundOff * scale);
       EXPECT_NEAR(m1[i], m0[i], kRoundOff * scale * ref.radius_m);
-      if (m.fibre_modulus_Pa == 0.0) EXPECT_NEAR(m1[i], 0.0, kRoundOff * scale * ref.radius_m);
+      if (m.fibre_modulus_Pa == 0.0) {
+        EXPECT_NEAR(m1[i], 0.0, kRoundOff * scale * ref.radius_m);
+      }
       sum_moment += m1[i];
     }
     EXPECT_NEAR(sum_moment, 0.0, kRoundOff * scale * ref.radius_m);

@@ -72,9 +72,10 @@ TEST(TreadBlockMesh, VolumeAndClosedOutwardSurface) {
   EXPECT_NEAR(area[cosim::FacetTag::shoulder], 2 * H * W, 1e-15);
   EXPECT_NEAR(area[cosim::FacetTag::rim_contact], g.length_x_m * W, 1e-15);
   // The ribs' faces lie at the given height, the held top at height + H.
-  for (const auto& f : m.facets)
-    if (f.tag == cosim::FacetTag::tread_top)
-      for (int n : f.nodes) EXPECT_DOUBLE_EQ(m.nodes[n].z(), 0.001);
+  for (const auto& f : m.facets) {
+    if (f.tag != cosim::FacetTag::tread_top) continue;
+    for (int n : f.nodes) EXPECT_DOUBLE_EQ(m.nodes[n].z(), 0.001);
+  }
   for (int n : m.rim_nodes) EXPECT_NEAR(m.nodes[n].z(), 0.001 + H, 1e-15);
 }
 

@@ -52,7 +52,7 @@ void check_surface_topology(const SurfaceTopology& t, const std::string& what) {
     if (!(t.node_mass_kg[k] > 0.0 && std::isfinite(t.node_mass_kg[k])))
       throw Error(what + ": node_mass_kg[" + std::to_string(k) + "] is not a positive finite mass");
   for (std::size_t f = 0; f < t.facet_tags.size(); ++f)
-    if (static_cast<int>(t.facet_tags[f]) < 0 || static_cast<int>(t.facet_tags[f]) >= kFacetTagCount)
+    if (static_cast<int>(t.facet_tags[f]) >= kFacetTagCount)  // an unsigned byte: never below 0
       throw Error(what + ": facet_tags[" + std::to_string(f) + "] is not a facet tag");
 }
 

@@ -348,7 +348,6 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
           cosim::penalty::normal_force(k, delta, vn, c_d, cosim::penalty::Damping::approach_only);
       const double fn = normal.force_N;
       const V3 vt_vec = rel - vn * n;
-      const double vt = vt_vec.norm();
       const std::uint32_t fid = s.facet_id.empty() ? static_cast<std::uint32_t>(f) : s.facet_id[f];
       // Coulomb friction with an elastic stick (penalty friction with elastic
       // slip: Wriggers, Computational Contact Mechanics, 2006, 5.2.2; Abaqus

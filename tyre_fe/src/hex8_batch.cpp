@@ -141,9 +141,14 @@ void batch_forces(const Hex8Batch& b, const double* const position[3], const dou
     // tr(D) = tr(dv/dX F^-1) = (dv/dX : cof F) / J; sigma_v = b1 rho c L_e tr(D) I.
     V dvdX_cof = splat(0.0);
     for (int k = 0; k < 3; ++k) {
+      // Gathered into plain arrays and copied whole: writing a vector's lanes
+      // one by one reads it first, which GCC 12 takes for a use uninitialised.
       V v[8];
-      for (int a = 0; a < 8; ++a)
-        for (int l = 0; l < kHexLanes; ++l) v[a][l] = velocity[k][b.node[a][l]];
+      for (int a = 0; a < 8; ++a) {
+        double lanes[kHexLanes];
+        for (int l = 0; l < kHexLanes; ++l) lanes[l] = velocity[k][b.node[a][l]];
+        std::memcpy(&v[a], lanes, sizeof lanes);
+      }
       for (int l = 0; l < 3; ++l) {
         V dv = v[0] * B[0][l];
         for (int a = 1; a < 8; ++a) dv += v[a] * B[a][l];

@@ -290,7 +290,6 @@ double TyreRun::initialize(cosim::RunRecord& record) {
   max_steps_ = scene_.time().max_steps();
   frames_ = std::make_unique<FrameWriter>(out, options_.write_vtk ? scene_.output().vtk_interval_s() : 0.0);
   stepping_ = true;
-  const auto& st = t_.stages();
   return cosim::planned_end_time_s(scene_);  // transfer check, loading, rolling
 }
 

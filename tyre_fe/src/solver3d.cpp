@@ -177,7 +177,7 @@ void road_contact(const Model3d& m, State3d& s) {
 
 // Stage 5: rim rigid body (free nodes are updated in stage 6).
 // Returns the power of the rim loads and of the reactions of prescribed motion.
-double rim_update(const Model3d& m, State3d& s, const RimDrive& d) {
+double rim_update(const Model3d& /*model*/, State3d& s, const RimDrive& d) {
   RimState& rim = s.rim;
   double fx = 0.0, fz = 0.0, my = 0.0;
   for (std::size_t k = 0; k < s.rim_nodes.size(); ++k) {

@@ -62,8 +62,8 @@ template <class T> std::string topic_name(const TopicQos& qos) {
 // SurfaceMesh: TRANSIENT_LOCAL keep-last 1 (late joiners get it);
 // RunControl: volatile keep-last 64; per-step topics: volatile keep-last 16.
 template <class T> TopicQos default_qos() { return {}; }
-template <> inline TopicQos default_qos<SurfaceMesh>() { return {1, Durability::transient_local}; }
-template <> inline TopicQos default_qos<RunControl>() { return {64, Durability::volatile_data}; }
+template <> inline TopicQos default_qos<SurfaceMesh>() { return {1, Durability::transient_local, {}}; }
+template <> inline TopicQos default_qos<RunControl>() { return {64, Durability::volatile_data, {}}; }
 
 // What writers and readers have in common.
 class Endpoint {
