@@ -110,6 +110,15 @@ std::uint64_t newest_common_checkpoint(const std::string& out, std::string& list
 
 int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   const auto vendors = parse_vendor_map(request.dds);
+  // Secured handshakes between Debian's Fast DDS 2.9 and Cyclone DDS 0.10 fail
+  // when Fast DDS starts them (Cyclone cannot decode Fast's DH public key:
+  // eclipse-cyclonedds/cyclonedds#701, eProsima/Fast-DDS#3259; measured with the
+  // transport probe, docs/reliability.md): a secured run uses one vendor.
+  if (!request.security_dir.empty() &&
+      std::set<transport::Vendor>{vendors.at("tyre"), vendors.at("terrain"), vendors.at("coupler")}.size() > 1)
+    throw Error("--security with --dds " + request.dds +
+                ": a secured run needs one DDS vendor for every process (Fast DDS 2.9 and Cyclone DDS 0.10 do not "
+                "complete each other's secured handshake; docs/reliability.md, \"DDS Security\")");
   const int domain = request.domain >= 0 ? request.domain : scene.message.coupling().domain_id();
   make_folder(request.out_dir);
   const std::string out = request.out_dir;
@@ -131,6 +140,8 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   // against 150 steps/s on 2 cores). A user's own setting is kept.
   setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
   const std::string bin = executable_folder();
+  const std::string security_dir =
+      request.security_dir.empty() ? std::string() : std::filesystem::absolute(request.security_dir).string();
   std::uint64_t run_id = 0;
   auto args_for = [&](const std::string& role, const std::string& dir, bool solver, bool quiet) {
     std::vector<std::string> a{request.scene_file, "--out", dir,  "--run-id", hex(run_id),
@@ -140,6 +151,7 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
     if (quiet || request.quiet) a.push_back("--quiet");
     if (request.no_vtk && solver) a.push_back("--no-vtk");
     if (from_exchange > 0) a.insert(a.end(), {"--restart-at", std::to_string(from_exchange)});
+    if (!request.security_dir.empty()) a.insert(a.end(), {"--security", security_dir});
     return a;
   };
   const std::uint64_t restarted_from = from_exchange;
@@ -186,7 +198,8 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   // terrain's beside them (the rut and the deepest penetration), the tyre's,
   // with each process's status.
   nlohmann::json summary = {{"scene", scene.message.name()}, {"scene_file", scene.file},
-                            {"revision", source_revision()}, {"run_id", hex(run_id)}, {"dds_domain", domain}};
+                            {"revision", source_revision()}, {"run_id", hex(run_id)}, {"dds_domain", domain},
+                            {"dds_security", security_dir.empty() ? nlohmann::json() : nlohmann::json(security_dir)}};
   nlohmann::json overrides = nlohmann::json::object();
   for (const auto& [k, v] : scene.overrides) overrides[k] = v;
   summary["overrides"] = overrides;

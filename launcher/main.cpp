@@ -2,7 +2,7 @@
 //   cosim run SCENE --out DIR [--set field.path=value ...] [--restart] [--restart-on-failure N]
 //   cosim check SCENE [--set ...]
 //   cosim study STUDY --out DIR [--pass NAME] [--resume] [--tabulate]
-//   cosim monitor [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...] [--csv FILE]
+//   cosim monitor [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...] [--csv FILE] [--security DIR]
 #include <cstdio>
 #include <string>
 
@@ -33,6 +33,9 @@ int main(int argc, char** argv) {
                       "coupled scenes: DDS vendor, for all (fast|cyclone) or per process "
                       "(tyre=fast,terrain=cyclone,coupler=cyclone)");
   run_cmd->add_option("--domain", run.domain, "coupled scenes: DDS domain id (default: the scene's coupling.domain_id)");
+  run_cmd->add_option("--security", run.security_dir,
+                      "coupled scenes: a secured DDS domain with the certificates and permissions in this folder "
+                      "(scripts/make_test_ca.sh)");
   std::string check_file;
   std::vector<std::string> check_sets;
   auto* check_cmd = app.add_subcommand("check", "validate a scene without running it");
@@ -60,6 +63,8 @@ int main(int argc, char** argv) {
   monitor_cmd->add_option("--interface", monitor.transport.network_interface, "network interface or IPv4 address");
   monitor_cmd->add_option("--peer", monitor_peers, "IPv4 address of a host of the run (unicast discovery)");
   monitor_cmd->add_flag("--multicast", monitor_multicast, "multicast discovery instead of peers");
+  monitor_cmd->add_option("--security", monitor.transport.security.directory,
+                          "join a secured run with the monitor's identity in this folder (scripts/make_test_ca.sh)");
   monitor_cmd->add_option("--csv", monitor.csv_path, "record every force sample to this CSV file");
   monitor_cmd->add_option("--refresh", monitor.refresh_s, "screen refresh interval [s]");
   monitor_cmd->add_option("--run-id", monitor_run_id, "follow this run (hex); default: the first seen");
@@ -78,6 +83,7 @@ int main(int argc, char** argv) {
       monitor.vendor = cosim::transport::parse_vendor(monitor_vendor);
       if (!monitor_peers.empty()) monitor.transport.static_peers = monitor_peers;
       monitor.transport.multicast = monitor_multicast;
+      monitor.transport.security.identity = "monitor";
       if (!monitor_run_id.empty()) {
         std::size_t used = 0;
         try {

@@ -30,6 +30,9 @@ struct RunRequest {
   // "tyre=fast,terrain=cyclone,coupler=cyclone") and domain (-1: the scene's).
   std::string dds = "cyclone";
   int domain = -1;
+  // Coupled scenes: a secured DDS domain from this folder (scripts/make_test_ca.sh);
+  // empty: an open domain. docs/reliability.md, "DDS Security".
+  std::string security_dir;
 };
 // Starts the participants of the scene and waits; returns the exit code.
 int run_scene_processes(const RunRequest& request);

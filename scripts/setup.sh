@@ -13,6 +13,7 @@ PACKAGES=(cmake g++ make git pkg-config
   cyclonedds-dev cyclonedds-tools libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   iproute2   # ip netns: the two-host test (tests/netns_coupled.sh)
   nftables   # its lossy link where the kernel has no netem
+  openssl    # scripts/make_test_ca.sh: the certificates of a secured DDS domain
   chromium   # headless: the study report test opens report.html in a real browser
   clang-14 libclang-rt-14-dev libomp-14-dev)  # the fuzz targets (libFuzzer, sanitizers): scripts/fuzz.sh
 

@@ -23,7 +23,7 @@ using cosim::coupling::Session;
 using cosim::coupling::SessionOptions;
 namespace tp = cosim::transport;
 
-test_support::DomainIds domains(190, 199);
+test_support::DomainIds domains(200, 209);
 
 SessionOptions options(tp::Vendor vendor, int domain, std::uint64_t run, tp::Role self) {
   SessionOptions o;

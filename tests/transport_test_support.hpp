@@ -35,8 +35,8 @@ inline std::string pair_name(const testing::TestParamInfo<VendorPair>& info) {
 inline std::string vendor_param_name(const testing::TestParamInfo<Vendor>& info) { return vendor_name(info.param); }
 
 // A fresh domain id per call, from `first` up (each test program has its own
-// range: roundtrip 10-79, lockstep 80-149, processes 150-179, options 180-189;
-// the benchmark uses 200-232).
+// range: roundtrip 10-79, lockstep 80-149, processes 150-179, options 180-189,
+// monitor 190-199, session 200-209, security 210-230; the benchmark uses 200-232).
 class DomainIds {
  public:
   explicit DomainIds(int first, int last) : next_(first), last_(last) {}

@@ -78,6 +78,22 @@ int free_participant_index(int domain_id, const std::string& address) {
               std::to_string(domain_id) + ": too many participants on this machine");
 }
 
+// DDS Security 1.1 builtin plugins, configured by participant properties
+// (Fast DDS documentation, "Security": dds.sec.* property names).
+void add_security_properties(dds::DomainParticipantQos& q, const SecurityFiles& s) {
+  auto& p = q.properties().properties();
+  const auto file = [&](const char* name) { return "file://" + s.path(name); };
+  p.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
+  p.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_ca", file("identity_ca.pem"));
+  p.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_certificate", file("cert.pem"));
+  p.emplace_back("dds.sec.auth.builtin.PKI-DH.private_key", file("key.pem"));
+  p.emplace_back("dds.sec.access.plugin", "builtin.Access-Permissions");
+  p.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions_ca", file("permissions_ca.pem"));
+  p.emplace_back("dds.sec.access.builtin.Access-Permissions.governance", file("governance.p7s"));
+  p.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions", file("permissions.p7s"));
+  p.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 // The DomainParticipant with one publisher and one subscriber; shared by the
 // Participant object and every writer and reader made from it.
 class Domain {
@@ -100,6 +116,7 @@ class Domain {
       builtin.metatrafficUnicastLocatorList.push_back(udp_locator(address));
       q.wire_protocol().default_unicast_locator_list.push_back(udp_locator(address));
     }
+    if (o.security.enabled()) add_security_properties(q, o.security);
     {
       // Pick the index and bind its ports in one go: two participants created
       // at once in this process would otherwise pick the same index.
@@ -109,7 +126,10 @@ class Domain {
     }
     if (!participant_)
       throw Error("Fast DDS: cannot create a participant on domain " + std::to_string(o.domain_id) + " (interface " +
-                  address + ")");
+                  address + (o.security.enabled() ? ", security files of '" + o.security.identity + "' in " +
+                                                        o.security.directory + ": rejected, see the log above"
+                                                  : std::string()) +
+                  ")");
     publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
     subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
     if (!publisher_ || !subscriber_) {

@@ -15,7 +15,7 @@
 int main(int argc, char** argv) {
   using namespace cosim::transport;
   CLI::App app{"cosim_transport_probe: lock-step DDS exchange between two processes"};
-  std::string dds = "cyclone", role = "ping", interface = "lo";
+  std::string dds = "cyclone", role = "ping", interface = "lo", security;
   probe::ProbeOptions o;
   int timeout_ms = 20000;
   app.add_option("--dds", dds, "vendor: fast or cyclone")->required();
@@ -28,10 +28,14 @@ int main(int argc, char** argv) {
   app.add_option("--interface", interface, "network interface name or IPv4 address");
   app.add_option("--timeout-ms", timeout_ms, "handshake and per-step timeout");
   app.add_flag("!--no-check", o.check_content, "skip checking the received content");
+  app.add_option("--security", security,
+                 "a secured domain: the folder of scripts/make_test_ca.sh (ping uses the tyre's identity, pong the "
+                 "terrain's)");
   CLI11_PARSE(app, argc, argv);
   try {
     o.vendor = parse_vendor(dds);
     o.transport.network_interface = interface;
+    o.transport.security = {security, security.empty() ? "" : role == "ping" ? "tyre" : "terrain"};
     o.timeout = std::chrono::milliseconds(timeout_ms);
     if (role == "ping") {
       const probe::ProbeResult r = probe::run_ping(o);

@@ -6,6 +6,8 @@
 #include <net/if.h>
 #include <netinet/in.h>
 
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "backends.hpp"
@@ -19,6 +21,9 @@ bool is_ipv4(const std::string& s) {
   in_addr a{};
   return inet_pton(AF_INET, s.c_str(), &a) == 1;
 }
+
+const char* const kSecurityFiles[] = {"identity_ca.pem", "permissions_ca.pem", "governance.p7s",
+                                      "cert.pem",        "key.pem",            "permissions.p7s"};
 
 }  // namespace
 
@@ -112,6 +117,23 @@ void validate(const TransportOptions& o) {
   if (o.static_peers.empty() && !o.multicast)
     throw Error("no static peers and multicast off: participants could never discover each other");
   interface_address(o.network_interface);
+  if (o.security.enabled()) {
+    if (o.security.identity.empty()) throw Error("DDS Security: no identity given for " + o.security.directory);
+    for (const char* file : kSecurityFiles) {
+      const std::string path = o.security.path(file);
+      if (!std::ifstream(path))
+        throw Error("DDS Security: cannot read " + path +
+                    " (make the folder with scripts/make_test_ca.sh, which writes every file a participant needs)");
+    }
+  }
+}
+
+std::string SecurityFiles::path(const std::string& file) const {
+  std::error_code ec;
+  std::filesystem::path base = std::filesystem::absolute(directory, ec);
+  if (ec) base = directory;
+  const bool shared = file == "identity_ca.pem" || file == "permissions_ca.pem" || file == "governance.p7s";
+  return (shared ? base / file : base / identity / file).lexically_normal().string();
 }
 
 std::unique_ptr<Participant> make_participant(Vendor vendor, const TransportOptions& options) {

@@ -52,6 +52,7 @@ struct CouplingCli {
   std::string interface = "lo";
   std::vector<std::string> peers;
   bool multicast = false;
+  std::string security_dir;  // empty: an open domain
 
   void add_to(CLI::App& app, bool with_coupled_flag) {
     if (with_coupled_flag)
@@ -62,6 +63,9 @@ struct CouplingCli {
     app.add_option("--interface", interface, "network interface or IPv4 address to use (default lo)");
     app.add_option("--peer", peers, "IPv4 address of another host of the run (unicast discovery; repeat)");
     app.add_flag("--multicast", multicast, "multicast discovery instead of --peer addresses");
+    app.add_option("--security", security_dir,
+                   "a secured DDS domain: the folder of scripts/make_test_ca.sh (this process uses its role's "
+                   "identity in it); every process of the run must be given one");
   }
 
   // Throws cosim::Error for a bad vendor or run id.
@@ -83,6 +87,7 @@ struct CouplingCli {
     o.transport.network_interface = interface;
     if (!peers.empty()) o.transport.static_peers = peers;
     o.transport.multicast = multicast;
+    o.transport.security = {security_dir, security_dir.empty() ? std::string() : tp::role_name(self)};
     o.step_timeout_s = c.step_timeout_s();
     o.start_timeout_s = c.start_timeout_s();
     return o;

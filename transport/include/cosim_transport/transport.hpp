@@ -27,6 +27,20 @@ const char* vendor_name(Vendor vendor);
 // The vendors compiled into this build (COSIM_WITH_FASTDDS / COSIM_WITH_CYCLONEDDS).
 std::vector<Vendor> available_vendors();
 
+// A secured domain (OMG DDS Security 1.1 builtin plugins: PKI-DH
+// authentication, Access-Permissions, AES-GCM-GMAC), from the folder that
+// scripts/make_test_ca.sh writes: identity_ca.pem, permissions_ca.pem,
+// governance.p7s, and per identity IDENTITY/cert.pem, key.pem, permissions.p7s.
+// An empty directory is an open domain. docs/reliability.md, "DDS Security".
+struct SecurityFiles {
+  std::string directory;
+  std::string identity;  // tyre, terrain, coupler or monitor: the subfolder of this participant
+  bool enabled() const { return !directory.empty(); }
+  // Absolute path of identity_ca.pem, permissions_ca.pem, governance.p7s, or
+  // (for cert.pem, key.pem, permissions.p7s) of the identity's file.
+  std::string path(const std::string& file) const;
+};
+
 struct TransportOptions {
   int domain_id = 0;  // 0..232
   // Interface name ("lo", "eth0") or IPv4 address all traffic is pinned to.
@@ -36,10 +50,11 @@ struct TransportOptions {
   std::vector<std::string> static_peers = {"127.0.0.1"};
   bool multicast = false;                    // multicast discovery and data
   int socket_buffer_bytes = 4 * 1024 * 1024;  // UDP send/receive buffers
+  SecurityFiles security;                     // empty: an open domain
 };
 
 // Throws cosim::Error for an out-of-range domain, unknown interface, bad peer
-// address or non-positive buffer size. make_participant() calls it.
+// address, non-positive buffer size, or a security file that cannot be read. make_participant() calls it.
 void validate(const TransportOptions& options);
 // IPv4 address of options.network_interface (an address is returned as is).
 std::string interface_address(const std::string& name_or_address);
