@@ -29,11 +29,11 @@ long kernel_limit(const char* file, long wanted) {
   return (in >> limit && limit > 0) ? std::min(limit, wanted) : wanted;
 }
 
-// DDS Security 1.1 builtin plugins, per participant through its QoS
-// properties (Cyclone DDS 0.10, "dds.sec.*"), so that one process may hold
-// participants of several identities on one domain (the domain's XML
-// configuration is shared by the process). Debian installs the plugins outside
-// the loader's path, in the folder CMake found (COSIM_CYCLONE_SECURITY_DIR).
+// DDS Security 1.1 builtin plugins, given in the participant's QoS properties
+// (Cyclone DDS 0.10, "dds.sec.*"), which leaves the domain's XML configuration
+// the same for open and secured participants; the plugins still act per domain
+// and process (CycloneDomain::acquire). Debian installs them outside the
+// loader's path, in the folder CMake found (COSIM_CYCLONE_SECURITY_DIR).
 void set_security_properties(dds_qos_t* q, const SecurityFiles& s) {
   const auto file = [&](const char* name) { return "file://" + s.path(name); };
   const auto library = [&](const char* plugin, const char* name, const char* init, const char* fini) {
