@@ -79,17 +79,16 @@ void print_force_means(const nlohmann::json& r, const nlohmann::json& performanc
                 100.0 * performance.value("active_particle_share", 1.0), summary.value("wall_time_s", 0.0));
 }
 
-// The newest exchange of which all three processes have a checkpoint in `out`
-// (0: none); `listing` says what each has.
+}  // namespace
+
 std::uint64_t newest_common_checkpoint(const std::string& out, std::string& listing) {
   std::set<std::uint64_t> common;
   bool first = true;
   listing.clear();
-  for (const auto& [dir, program] : {std::pair<const char*, const char*>{"coupler", "coupler"},
-                                     {"terrain", "snow_sph"}, {"tyre", "tyre_fe"}}) {
+  for (const auto& [role, program] : coupled_processes) {
     std::set<std::uint64_t> steps;
     std::string list;
-    for (const auto& f : list_checkpoints(out + "/" + dir, program)) {
+    for (const auto& f : list_checkpoints(out + "/" + role, program)) {
       steps.insert(f.step);
       list += (list.empty() ? "" : ", ") + std::to_string(f.step);
     }
@@ -105,8 +104,6 @@ std::uint64_t newest_common_checkpoint(const std::string& out, std::string& list
   }
   return common.empty() ? 0 : *common.rbegin();
 }
-
-}  // namespace
 
 int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   const auto vendors = parse_vendor_map(request.dds);
@@ -166,10 +163,11 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
                  transport::vendor_name(vendors.at("terrain")), transport::vendor_name(vendors.at("tyre")), domain,
                  hex(run_id).c_str(),
                  from_exchange > 0 ? (", continuing from exchange " + std::to_string(from_exchange)).c_str() : "");
-    const std::vector<ChildSpec> children{
-        {"coupler", bin + "/coupler", args_for("coupler", out + "/coupler", false, true)},
-        {"snow_sph", bin + "/snow_sph", args_for("terrain", out + "/terrain", true, true)},
-        {"tyre_fe", bin + "/tyre_fe", args_for("tyre", out + "/tyre", true, false)}};
+    // The solvers get --coupled; the tyre alone prints progress.
+    std::vector<ChildSpec> children;
+    for (const auto& [role, program] : coupled_processes)
+      children.push_back({program, bin + "/" + program,
+                          args_for(role, out + "/" + role, std::string(role) != "coupler", std::string(role) != "tyre")});
     results = run_children(children, 10.0);
     const ChildResult* first_failed = nullptr;
     bool signalled = false;
@@ -210,13 +208,14 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   int code = 0;
   bool all_completed = true;
   for (const auto& r : results) {
-    const std::string role = r.name == "tyre_fe" ? "tyre" : r.name == "snow_sph" ? "terrain" : "coupler";
+    std::string role;
+    for (const auto& p : coupled_processes)
+      if (r.name == p.program) role = p.role;
     const nlohmann::json& own = role == "tyre" ? tyre : role == "terrain" ? terrain : coupler;
     participants[r.name] = {{"dds", transport::vendor_name(vendors.at(role))}, {"exit_code", r.exit_code},
                             {"ended_after_s", r.ended_after_s}, {"terminated_by_launcher", r.terminated_by_us},
                             {"status", own.is_object() ? own.value("status", "unknown") : "no summary"},
-                            {"summary", r.name == "coupler" ? "coupler/summary.json"
-                                                            : (role + "/summary.json")}};
+                            {"summary", role + "/summary.json"}};
     if (own.is_object() && own.contains("error")) participants[r.name]["error"] = own["error"];
     if (r.exit_code != 0) {
       all_completed = false;

@@ -23,8 +23,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cosim/checkpoint.hpp"
 #include "cosim/process.hpp"
+#include "coupled_run.hpp"
 #include "test_paths.hpp"
 
 namespace {
@@ -42,15 +42,10 @@ std::string cosim_bin() { return test_support::bin() + "/cosim"; }
 
 nlohmann::json summary(const std::string& path) { return nlohmann::json::parse(read_file(path)); }
 
-// The newest checkpoint's exchange of every process of the run in `out` (0: none yet).
+// The exchange `cosim run --restart` would continue the run in `out` from (0: none yet).
 std::uint64_t common_checkpoint(const std::string& out) {
-  std::uint64_t common = ~0ull;
-  for (const auto& [dir, program] : {std::pair<const char*, const char*>{"coupler", "coupler"},
-                                     {"terrain", "snow_sph"}, {"tyre", "tyre_fe"}}) {
-    const auto files = cosim::list_checkpoints(out + "/" + dir, program);
-    common = std::min<std::uint64_t>(common, files.empty() ? 0 : files.back().step);
-  }
-  return common;
+  std::string listing;
+  return cosim::newest_common_checkpoint(out, listing);
 }
 
 bool wait_for_checkpoint(const std::string& out, std::uint64_t exchange) {
@@ -93,7 +88,8 @@ TEST_F(CoupledRestart, AStopSignalCheckpointsEveryProcessAtOneExchangeAndTheRest
   // One exchange, named by the coupler after the periodic one, in all three.
   const std::uint64_t stop = common_checkpoint(out);
   EXPECT_GT(stop, 3u * 446u) << read_file(out + ".log");
-  for (const char* dir : {"coupler", "terrain", "tyre"}) {
+  for (const auto& process : cosim::coupled_processes) {
+    const std::string dir = process.role;
     const auto s = summary(out + "/" + dir + "/summary.json");
     EXPECT_EQ(s["status"], "failed") << dir;
     EXPECT_NE(s["error"].get<std::string>().find("stopped by a signal at exchange " + std::to_string(stop)),
