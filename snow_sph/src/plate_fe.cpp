@@ -257,7 +257,10 @@ nlohmann::json run_plate_fe(const PlateFeSetup& s, const std::string& out, bool 
   summary["steps"] = steps;
   summary["simulated_time_s"] = t;
   summary["wall_time_s"] = progress.elapsed_s();
+  // The mesh's snow surface is the slab's top, where the plate starts: its
+  // sinkage is its displacement.
   summary["results"] = {{"plate_displacement_m", H - plate_z},
+                        {"plate_sinkage_m", H - plate_z},
                         {"plate_velocity_z_m_per_s", plate_v},
                         {"snow_force_on_plate_N", snow_force},
                         {"largest_snow_force_N", max_force},

@@ -208,6 +208,25 @@ double SphRun::initialize(cosim::RunRecord& record) {
     }
   }
   summary["materials"] = materials;
+  // A region that is not a whole number of particles is filled short of its
+  // max faces: a gap between the snow and a wall unconfines it, and a body
+  // started at the region's top falls through the gap (sinkage is measured
+  // from the particles' top: RigidBody::surface_z).
+  nlohmann::json blocks = nlohmann::json::array();
+  for (std::size_t k = 0; k < model.block_lattices.size(); ++k) {
+    const BlockLattice& l = model.block_lattices[k];
+    const double* a = l.region_max;
+    const double* f = l.filled_max;
+    blocks.push_back({{"region_max_m", {a[0], a[1], a[2]}}, {"particles_fill_to_m", {f[0], f[1], f[2]}}});
+    if (std::max({a[0] - f[0], a[1] - f[1], a[2] - f[2]}) > 1e-9)
+      std::fprintf(stderr,
+                   "[%s] sph.blocks[%zu]: %s m particles fill the region to (%s, %s, %s) m, short of its max corner "
+                   "(%s, %s, %s) m: a spacing that divides the region fills it\n",
+                   scene_.name().c_str(), k, cosim::number_text(model.settings.spacing).c_str(),
+                   cosim::number_text(f[0]).c_str(), cosim::number_text(f[1]).c_str(), cosim::number_text(f[2]).c_str(),
+                   cosim::number_text(a[0]).c_str(), cosim::number_text(a[1]).c_str(), cosim::number_text(a[2]).c_str());
+  }
+  summary["blocks"] = blocks;
   probe_from_ = model.settings.end_time - sph.probes().average_last_s();
   csv_interval_ = scene_.output().csv_interval_s();
   vtk_interval_ = options_.write_vtk ? scene_.output().vtk_interval_s() : 0.0;
@@ -478,6 +497,10 @@ void SphRun::finalize(cosim::RunRecord& record) {
   }
   for (const auto& b : model.bodies) {
     results[b.name + "_displacement_m"] = b.z0 - b.z;
+    if (std::isfinite(b.surface_z)) {
+      results[b.name + "_sinkage_m"] = b.surface_z - b.z;  // below the snow's surface at the start
+      results[b.name + "_snow_surface_z_m"] = b.surface_z;
+    }
     results[b.name + "_velocity_z_m_per_s"] = b.vz;
     results[b.name + "_contact_force_z_N"] = b.contact_force_z_domain * b.symmetry_factor;
     results[b.name + "_applied_force_z_N"] = b.applied_force_z_now(solver.time());

@@ -1,6 +1,7 @@
 #include "snow_sph/scene.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "cosim/error.hpp"
@@ -293,6 +294,12 @@ Model build_model(const sc::Scene& scene) {
       n[a] = static_cast<long>(std::floor((coordinate(block.region().max(), a) - lo[a]) / dx + 1e-6));
     }
     const double top = lo[2] + n[2] * dx;
+    BlockLattice& lattice = model.block_lattices.emplace_back();
+    for (int a = 0; a < 3; ++a) {
+      lattice.region_min[a] = lo[a];
+      lattice.region_max[a] = coordinate(block.region().max(), a);
+      lattice.filled_max[a] = lo[a] + n[a] * dx;
+    }
     const double g = -st.gravity[2];
     if (mat.kind == MaterialModel::Kind::snow) {
       const double K = mat.mdpc.bulk_modulus_Pa(), G = mat.mdpc.shear_modulus_Pa();
@@ -346,6 +353,11 @@ Model build_model(const sc::Scene& scene) {
     body.x = b.initial_bottom_centre_m().x();
     body.y = b.initial_bottom_centre_m().y();
     body.z = body.z0 = b.initial_bottom_centre_m().z();
+    body.surface_z = std::numeric_limits<double>::quiet_NaN();
+    for (const BlockLattice& l : model.block_lattices)
+      if (body.x >= l.region_min[0] && body.x <= l.filled_max[0] && body.y >= l.region_min[1] &&
+          body.y <= l.filled_max[1] && !(l.filled_max[2] <= body.surface_z))  // the highest (NaN compares false)
+        body.surface_z = l.filled_max[2];
     body.friction = b.friction_coefficient();
     for (const MirrorPlane& plane : model.planes) {
       if (!plane.symmetry) continue;

@@ -44,6 +44,12 @@ struct RigidBody {
   double symmetry_factor = 1.0;     // full model / simulated part
   double x = 0.0, y = 0.0, z = 0.0;  // bottom centre
   double z0 = 0.0;
+  // The snow's surface under the body's centre at the start: the top of the
+  // particle lattice there (its block's min z plus whole layers of dx, which is
+  // below the region's top when dx does not divide its height). Sinkage is
+  // measured from it, as the laboratory measured the plate's (thesis 3.2).
+  // NaN: no block under the body.
+  double surface_z = 0.0;
   double vz = 0.0, az = 0.0;
   double friction = 0.0;
   bool prescribed_velocity = false;
@@ -76,8 +82,17 @@ struct Settings {
   double skin = 0.0;
 };
 
+// What a particle block fills: its region holds whole layers of dx from the
+// region's min corner (snow_sph/scene.cpp), so the particles end at
+// filled_max, short of region_max when dx does not divide the region.
+struct BlockLattice {
+  double region_min[3] = {0, 0, 0}, region_max[3] = {0, 0, 0};
+  double filled_max[3] = {0, 0, 0};
+};
+
 struct Model {
   std::string name;
+  std::vector<BlockLattice> block_lattices;  // one per scene block, in order
   Particles particles;
   std::vector<MaterialModel> materials;
   Kernel kernel;
