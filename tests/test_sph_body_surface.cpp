@@ -1,3 +1,5 @@
+// The terrain's surface, the datum of the plate's and the tyre's sinkage.
+//
 // The plate's sinkage is measured from the snow's surface under it, as the
 // laboratory's plate sinkage was (thesis 3.2). That surface is the top of the
 // particle lattice: a block's region is filled with whole layers of dx
@@ -13,6 +15,7 @@
 #include <limits>
 #include <string>
 
+#include "coupler/scene_checks.hpp"
 #include "snow_sph/scene.hpp"
 #include "test_support.hpp"
 
@@ -45,6 +48,23 @@ TEST(SphBodySurface, SinkageIsMeasuredFromTheTopOfTheParticlesUnderThePlate) {
     const double gap = 0.5 - surface;
     if (dx == 0.014) EXPECT_NEAR(gap, 0.01, 1e-12);
     else EXPECT_NEAR(gap, 0.0, 1e-12) << "dx = " << dx;
+  }
+}
+
+
+// The coupler measures the tyre's sinkage from the same surface. The coarse
+// torque and slip studies run the thesis's 0.09 m snow block at 20 mm: four
+// layers, 0.08 m, so the snow's top is 1 cm below the region's (z = 0).
+TEST(SphBodySurface, TheCouplersTerrainSurfaceIsTheTopOfTheParticles) {
+  for (const double dx : {0.02, 0.01}) {
+    const auto loaded = snow_sph::load_sph_scene(test_support::source_dir() +
+                                                     "/configs/scenes/tyre_torque_snow_thesis.textproto",
+                                                 {"sph.particle_spacing_m=" + std::to_string(dx)});
+    const snow_sph::Model model = snow_sph::build_model(loaded->message);
+    double top = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < model.particles.n_real; ++i) top = std::max(top, model.particles.z[i] + 0.5 * dx);
+    EXPECT_NEAR(coupler::terrain_surface_z_m(loaded->message), top, 1e-12) << "dx = " << dx;
+    EXPECT_NEAR(top, dx == 0.02 ? -0.01 : 0.0, 1e-12) << "dx = " << dx;
   }
 }
 

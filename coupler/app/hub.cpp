@@ -15,6 +15,7 @@
 #include "cosim/coupling_window.hpp"
 #include "coupler/forces.hpp"
 #include "coupler/friction.hpp"
+#include "coupler/scene_checks.hpp"
 #include "coupler/wire.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/participant.hpp"
@@ -213,6 +214,10 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   rolling_radius_ = c.rolling_radius_m();
   record.results()["rolling_radius_for_F5_m"] = rolling_radius_;
   record.results()["rolling_radius_source"] = c.rolling_radius_source().empty() ? "scene" : c.rolling_radius_source();
+  // Sinkage below the top of the terrain's particles, not the region's (they
+  // differ when the spacing does not divide the block's height).
+  decomposition_.terrain_surface_z_m = terrain_surface_z_m(scene_);
+  record.results()["terrain_surface_z_m"] = decomposition_.terrain_surface_z_m;
   csv_ = &record.series("forces.csv",
                         {"time_s", "step", "traction_force_N", "motion_resistance_N", "groove_force_N",
                          "vertical_pressure_force_N", "rolling_resistance_moment_Nm", "rolling_resistance_force_N",

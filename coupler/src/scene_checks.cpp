@@ -1,10 +1,13 @@
 #include "coupler/scene_checks.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "coupler/friction.hpp"
 #include "cosim/error.hpp"
+#include "cosim/particle_lattice.hpp"
 
 namespace coupler {
 
@@ -67,6 +70,15 @@ void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::Validation
   if (scene.has_tyre() && scene.tyre().stages().loading_s() <= 0)
     r.fail(loaded.locator().child("tyre").child("stages").where("loading_s"),
            "a coupled run loads the tyre onto the terrain: give loading_s > 0");
+}
+
+double terrain_surface_z_m(const cosim::scene::Scene& scene) {
+  if (!scene.has_sph() || scene.sph().blocks_size() == 0) return 0.0;
+  const double dx = scene.sph().particle_spacing_m();
+  double top = -std::numeric_limits<double>::infinity();
+  for (const auto& b : scene.sph().blocks())
+    top = std::max(top, cosim::lattice_filled_max(b.region().min().z(), b.region().max().z(), dx));
+  return top;
 }
 
 }  // namespace coupler

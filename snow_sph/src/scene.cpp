@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cosim/error.hpp"
+#include "cosim/particle_lattice.hpp"
 
 namespace snow_sph {
 namespace sc = cosim::scene;
@@ -291,7 +292,7 @@ Model build_model(const sc::Scene& scene) {
     double lo[3];
     for (int a = 0; a < 3; ++a) {
       lo[a] = coordinate(block.region().min(), a);
-      n[a] = static_cast<long>(std::floor((coordinate(block.region().max(), a) - lo[a]) / dx + 1e-6));
+      n[a] = cosim::lattice_cells(lo[a], coordinate(block.region().max(), a), dx);
     }
     const double top = lo[2] + n[2] * dx;
     BlockLattice& lattice = model.block_lattices.emplace_back();
