@@ -4,8 +4,11 @@
 // over the frictionless floor and, without the limit, stays active back to the start.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
+#include <utility>
 
+#include "snow_sph/boundaries.hpp"
 #include "snow_sph/scene.hpp"
 #include "snow_sph/solver.hpp"
 #include "test_support.hpp"
@@ -21,10 +24,16 @@ struct Drawn {
   std::vector<double> x, speed;
   std::vector<int> active;
 };
-Drawn draw_domain(double margin_m, double wake_limit_m) {
+struct Terrain {
+  snow_sph::Model model;
+  snow_sph::Solver solver;
+  explicit Terrain(snow_sph::Model m) : model(std::move(m)), solver(model) {}
+};
+std::unique_ptr<Terrain> drawn_terrain(double margin_m, double wake_limit_m) {
   const auto loaded = snow_sph::load_sph_scene(kScene, {});
-  snow_sph::Model model = snow_sph::build_model(loaded->message);
-  snow_sph::Solver solver(model);
+  auto t = std::make_unique<Terrain>(snow_sph::build_model(loaded->message));
+  snow_sph::Model& model = t->model;
+  snow_sph::Solver& solver = t->solver;
   snow_sph::SurfaceContactParameters contact;
   contact.particle_radius_m = 0.5 * model.settings.spacing;
   contact.stiffness_N_per_m = model.settings.contact_stiffness;
@@ -43,6 +52,11 @@ Drawn draw_domain(double margin_m, double wake_limit_m) {
   solver.prepare();
   solver.contact_surface(&s, 0);
   solver.initialise();
+  return t;
+}
+Drawn draw_domain(double margin_m, double wake_limit_m) {
+  const auto t = drawn_terrain(margin_m, wake_limit_m);
+  const snow_sph::Particles& p = t->model.particles;
   Drawn d;
   for (std::size_t i = 0; i < p.n_real; ++i) {
     d.x.push_back(p.x[i]);
@@ -69,6 +83,49 @@ TEST(ActiveDomain, MovingParticlesStayActiveUpToTheWakeLimitAndNoFarther) {
     kept += near;
   }
   EXPECT_EQ(kept, 50);  // the two planes of particles at x = 0.46 and 0.48 m
+}
+
+// A particle set at rest outside the domain is not integrated, so its
+// acceleration (that of its last active step) does not limit the terrain's step:
+// the limit is the same with 1e12 m/s^2 on every resting particle, and is set by
+// it once the particle is active again. 1e12 m/s^2 gives sqrt(h / a) of a few
+// microseconds, far below the cube's Courant limit, so the check can fail.
+TEST(ActiveDomain, AParticleAtRestOutsideTheDomainDoesNotLimitTheStep) {
+  auto t = drawn_terrain(0.02, 0.07);
+  snow_sph::Particles& p = t->model.particles;
+  const double before = t->solver.stability_limit_dt();
+  std::size_t resting = p.n_real;
+  for (std::size_t i = 0; i < p.n_real; ++i)
+    if (!p.active[i]) p.ax[i] = 1e12, resting = i;
+  ASSERT_LT(resting, p.n_real);
+  EXPECT_EQ(t->solver.stability_limit_dt(), before);
+  p.active[resting] = 1;
+  EXPECT_LT(t->solver.stability_limit_dt(), 0.01 * before);
+}
+
+// The wall's push (wall_repulsion) acts on particles in the domain only: a
+// resting particle gets no force pass that would reset its acceleration, so a
+// push added every step would pile up on it without bound. One resting and one
+// active particle are put a quarter spacing inside the box's floor: the active
+// one is pushed up, the resting one gets nothing and the wall does no work on it.
+TEST(ActiveDomain, TheWallPushesOnlyParticlesInTheDomain) {
+  auto t = drawn_terrain(0.02, 0.07);
+  snow_sph::Model& model = t->model;
+  snow_sph::Particles& p = model.particles;
+  std::size_t resting = p.n_real, active = p.n_real;
+  for (std::size_t i = 0; i < p.n_real; ++i) (p.active[i] ? active : resting) = i;
+  ASSERT_LT(resting, p.n_real);
+  ASSERT_LT(active, p.n_real);
+  const snow_sph::MirrorPlane* floor = nullptr;
+  for (const auto& plane : model.planes)
+    if (plane.axis == 2 && plane.inside_sign > 0 && !plane.symmetry) floor = &plane;
+  ASSERT_NE(floor, nullptr);
+  for (std::size_t i : {resting, active}) p.z[i] = floor->position + 0.25 * model.settings.spacing;
+  std::vector<double> ax(p.n_real, 0.0), ay(p.n_real, 0.0), az(p.n_real, 0.0), power(p.n_real, 1.0);
+  snow_sph::wall_repulsion(model, ax.data(), ay.data(), az.data(), power.data());
+  EXPECT_GT(az[active], 0.0);
+  EXPECT_EQ(az[resting], 0.0);
+  EXPECT_EQ(power[resting], 0.0);
 }
 
 }  // namespace

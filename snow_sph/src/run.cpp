@@ -162,6 +162,8 @@ class SphRun final : public cosim::Participant {
   std::uint64_t exchange_ = 0, windows_ = 0;  // windows_: advance() calls (coupled: windows)
   bool stopped_ = false;
   double dt_min_ = 1e300, dt_max_ = 0.0, dt_sum_ = 0.0;
+  std::uint32_t reported_substeps_ = 1;  // the most sub-steps in one window reported on the log
+  std::string substeps_cause_;            // what set the terrain's limit at that window
   std::size_t clamped_ = 0;
   double probe_sum_ = 0.0, probe_time_ = 0.0, probe_from_ = 0.0, last_dt_ = 0.0;
   double next_csv_ = 0.0, next_vtk_ = 0.0, csv_interval_ = 0.0, vtk_interval_ = 0.0;
@@ -311,13 +313,18 @@ bool SphRun::advance() {
   if (!port_ && bodies_at_rest()) return false;
   const StepStats st = solver_->advance();
   ++windows_;
-  if (st.substeps > 1 && solver_->substepped_windows() == 1)
+  if (st.substeps > reported_substeps_) {
+    // The first sub-stepped window and every new most in one window, with what
+    // sets the limit after it (a sub-stepping run's cost is this cause's).
+    reported_substeps_ = st.substeps;
+    substeps_cause_ = solver_->limit_cause();
     std::fprintf(stderr,
-                 "[%s] t = %s s: the terrain's stable limit %s s fell below the coupling window %s s; "
-                 "it sub-steps (%u steps in this window; docs/coupling.md)\n",
+                 "[%s] t = %s s: the terrain's stable limit (smallest %s s) is below the coupling window %s s; "
+                 "%u sub-steps in this window, the most so far (now set by %s; docs/coupling.md)\n",
                  scene_.name().c_str(), cosim::number_text(solver_->time()).c_str(),
                  cosim::number_text(solver_->smallest_limit_dt()).c_str(), cosim::number_text(st.dt).c_str(),
-                 st.substeps);
+                 st.substeps, substeps_cause_.c_str());
+  }
   if (port_ && !exchange_surface(exchange_ + 1)) {
     // The surface's owner ended the run during this step.
     solver_->complete_step();
@@ -469,6 +476,7 @@ void SphRun::finalize(cosim::RunRecord& record) {
     // Windows in which the terrain's own limit fell below the window (docs/coupling.md).
     perf["terrain_substepped_windows"] = solver.substepped_windows();
     perf["terrain_most_substeps_per_window"] = solver.most_substeps();
+    if (!substeps_cause_.empty()) perf["terrain_most_substeps_cause"] = substeps_cause_;
     perf["active_particle_share"] = solver.mean_active_share();
     perf["held_load_window_limit_s"] = solver.held_load_limit_dt();
     perf["smallest_terrain_stability_limit_s"] = solver.smallest_limit_dt();

@@ -32,6 +32,7 @@ ShearFlips ghost_shear_flips(const Model& model, std::uint8_t mask);
 // image coincides with it and exerts no force (the kernel gradient vanishes
 // at r = 0), so without this a particle that reaches a wall sticks to it.
 // Adds to (ax, ay, az); power[i] receives the wall's power on particle i.
+// Particles at rest outside the active domain (Particles::active) are left alone.
 void wall_repulsion(const Model& model, double* ax, double* ay, double* az, double* power);
 
 // Last resort: a real particle found beyond a wall is reflected back inside
