@@ -1,6 +1,8 @@
 // Linear Us-Up Hugoniot EOS (thesis Table 4.1) against its closed form.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "snow_sph/water_eos.hpp"
 
 TEST(WaterEos, LinearUsUpWithZeroSlopeIsLinearInEta) {
@@ -31,5 +33,31 @@ TEST(WaterEos, EnergyIsIntegralOfPressureWork) {
     const double rho = 1003.0, d = 1e-3;
     const double dedrho = (eos.energy_per_mass(rho + d) - eos.energy_per_mass(rho - d)) / (2 * d);
     EXPECT_NEAR(dedrho, eos.pressure(rho) / (rho * rho), 1e-3 * eos.pressure(rho) / (rho * rho));
+  }
+}
+
+// The tension limit (WaterMaterial.tension_limit_Pa): the pressure follows the
+// law down to -limit and stays there, and the energy stays the integral of the
+// pressure's work through the limit (de/drho = p / rho^2 on both sides of it),
+// so the energy balance still closes. A splash in the hydroplaning run reached
+// 446 kg/m^3, where the law alone gives -27.6 MPa at c0 = 150 m/s.
+TEST(WaterEos, TheTensionLimitHoldsThePressureAndKeepsTheEnergyItsWork) {
+  for (double s : {0.0, 1.79}) {
+    snow_sph::WaterEos eos;
+    eos.c0 = 150.0, eos.s = s, eos.tension_limit = 99e3;
+    const snow_sph::WaterEos unlimited = [&] { auto u = eos; u.tension_limit = 0; return u; }();
+    EXPECT_LT(unlimited.pressure(446.0), -2e6);  // -27.6 MPa with s = 0, -2.7 MPa with 1.79
+    EXPECT_EQ(eos.pressure(446.0), -99e3);
+    const double rho_lim = eos.density_for_pressure(-99e3);
+    EXPECT_EQ(eos.pressure(1000.0), unlimited.pressure(1000.0));    // compression untouched
+    EXPECT_EQ(eos.pressure(rho_lim + 0.5), unlimited.pressure(rho_lim + 0.5));  // tension above the limit too
+    for (double rho : {rho_lim + 0.2, rho_lim - 0.2, 900.0, 446.0}) {
+      const double d = 1e-4;
+      const double dedrho = (eos.energy_per_mass(rho + d) - eos.energy_per_mass(rho - d)) / (2 * d);
+      const double expected = eos.pressure(rho) / (rho * rho);
+      // Central difference of a smooth (s = 0: quadratic, then linear) function;
+      // the s != 0 branch integrates with 16 midpoints: 1e-3 covers both.
+      EXPECT_NEAR(dedrho, expected, 1e-3 * std::fabs(expected)) << "s " << s << " rho " << rho;
+    }
   }
 }

@@ -200,6 +200,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
                            {"reference_sound_speed_m_per_s", mat.reference_sound_speed},
                            {"sound_speed_used_m_per_s", mat.eos.c0},
                            {"sound_speed_lowered", mat.sound_speed_lowered},
+                           {"tension_limit_Pa", mat.eos.tension_limit},  // 0: none
                            {"note", mat.sound_speed_lowered
                                         ? "artificial compressibility: sound speed lowered for speed"
                                         : "physical sound speed"}});

@@ -146,6 +146,7 @@ void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepor
       if (w.sound_speed_override_m_per_s() < 0) r.fail(wl.where("sound_speed_override_m_per_s"), "must be >= 0");
       if (w.dynamic_viscosity_pa_s() < 0) r.fail(wl.where("dynamic_viscosity_Pa_s"), "must be >= 0");
       if (w.hugoniot_slope_s() < 0) r.fail(wl.where("hugoniot_slope_s"), "must be >= 0");
+      if (!(w.tension_limit_pa() >= 0)) r.fail(wl.where("tension_limit_Pa"), "must be >= 0 (0: no limit)");
       if (w.gruneisen_ratio() != 0)
         r.fail(wl.where("gruneisen_ratio"), "only Gamma0 = 0 is supported (internal energy is not tracked)");
     } else {
@@ -234,6 +235,7 @@ MaterialModel material_from_scene(const sc::Material& material) {
     m.eos.rho0 = w.density_kg_per_m3();
     m.eos.c0 = water_sound_speed(w);
     m.eos.s = w.hugoniot_slope_s();
+    m.eos.tension_limit = w.tension_limit_pa();
     m.viscosity = w.dynamic_viscosity_pa_s();
   }
   return m;

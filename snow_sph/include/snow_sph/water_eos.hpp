@@ -5,6 +5,10 @@
 //   eta = 1 - rho0 / rho.
 // The internal energy Em is not tracked, so Gamma0 must be 0 (the thesis
 // value); validation refuses anything else.
+// With tension_limit > 0 the pressure does not fall below -tension_limit: water
+// cavitates near its vapour pressure instead of pulling without limit (Abaqus's
+// hydrostatic tensile cutoff, *TENSILE FAILURE; Radioss's Pmin of a fluid).
+#include <algorithm>
 #include <cmath>
 
 namespace snow_sph {
@@ -13,13 +17,19 @@ struct WaterEos {
   double rho0 = 996.0;      // kg/m^3
   double c0 = 1500.0;       // m/s (possibly lowered; see WaterModel)
   double s = 0.0;           // Hugoniot slope
+  double tension_limit = 0.0;  // Pa; 0: none
 
   double eta(double rho) const { return 1.0 - rho0 / rho; }
 
-  double pressure(double rho) const {
-    const double e = eta(rho);
+  // The Hugoniot's pressure at eta, before the tension limit.
+  double hugoniot_pressure(double e) const {
     const double d = 1.0 - s * e;
     return rho0 * c0 * c0 * e / (d * d);
+  }
+
+  double pressure(double rho) const {
+    const double pr = hugoniot_pressure(eta(rho));
+    return tension_limit > 0.0 ? std::max(pr, -tension_limit) : pr;
   }
 
   // Bulk sound speed sqrt(dp/drho).
@@ -48,8 +58,17 @@ struct WaterEos {
   // (s = 0: c0^2 eta^2 / 2). Used in the energy balance.
   double energy_per_mass(double rho) const {
     const double e = eta(rho);
+    if (tension_limit > 0.0 && e < 0.0 && hugoniot_pressure(e) < -tension_limit) {
+      // Along the law up to the limit, then at the constant -tension_limit.
+      const double e_lim = eta(density_for_pressure(-tension_limit));
+      return hugoniot_energy(e_lim) + tension_limit * (e_lim - e) / rho0;
+    }
+    return hugoniot_energy(e);
+  }
+
+  // Integral of p deta / rho0 along the law (d eta = rho0/rho^2 drho).
+  double hugoniot_energy(double e) const {
     if (s == 0.0) return 0.5 * c0 * c0 * e * e;
-    // integral of p deta / rho0 (d eta = rho0/rho^2 drho)
     const int n = 16;
     double sum = 0.0;
     for (int k = 0; k < n; ++k) {
