@@ -107,14 +107,17 @@ std::uint64_t checkpointed_length(const std::string& out) {
 TEST_F(Restart, AKilledRunRestartsFromItsLastPeriodicCheckpoint) {
   const std::string out = test_support::scratch("restart_kill");
   // Killed once rows past its newest checkpoint are on disk (the CSV flushes
-  // every second), so that the restart must cut them back.
+  // every second), so that the restart must cut them back. The run is stopped
+  // (SIGSTOP) while it is looked at: a checkpoint written between the look and
+  // the kill would otherwise cover every row, as it once did in CI.
   const pid_t pid = cosim::start_child(snow_sph(), plate_args(out), {out + ".log", out + ".log"});
   const auto start = std::chrono::steady_clock::now();
-  std::uint64_t saved = 0;
   std::error_code ec;
   while (std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
-    saved = checkpointed_length(out);
+    ::kill(pid, SIGSTOP);
+    const std::uint64_t saved = checkpointed_length(out);
     if (saved > 0 && std::filesystem::file_size(out + "/energy.csv", ec) > saved) break;
+    ::kill(pid, SIGCONT);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   ::kill(pid, SIGKILL);

@@ -49,6 +49,13 @@ TEST(WaterEos, TheTensionLimitHoldsThePressureAndKeepsTheEnergyItsWork) {
     EXPECT_LT(unlimited.pressure(446.0), -2e6);  // -27.6 MPa with s = 0, -2.7 MPa with 1.79
     EXPECT_EQ(eos.pressure(446.0), -99e3);
     const double rho_lim = eos.density_for_pressure(-99e3);
+    // Beyond the limit the sound speed stays the limit's (the law alone with
+    // s = 0: 3,200 m/s at 46 kg/m^3). The limit's strain is 99 kPa / (rho0 c0^2)
+    // = 0.44 %, which lowers sqrt(dp/drho) by up to 1.5 % with s = 1.79
+    // ((1 + s e) / (1 - s e)^3 under the root): 2 % of c0 is that bound with room.
+    EXPECT_EQ(eos.sound_speed(46.0), eos.sound_speed(rho_lim));
+    EXPECT_NEAR(eos.sound_speed(46.0), 150.0, 3.0);
+    if (s == 0.0) EXPECT_GT(unlimited.sound_speed(46.0), 1000.0);
     EXPECT_EQ(eos.pressure(1000.0), unlimited.pressure(1000.0));    // compression untouched
     EXPECT_EQ(eos.pressure(rho_lim + 0.5), unlimited.pressure(rho_lim + 0.5));  // tension above the limit too
     for (double rho : {rho_lim + 0.2, rho_lim - 0.2, 900.0, 446.0}) {
