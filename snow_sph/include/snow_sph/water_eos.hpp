@@ -27,9 +27,18 @@ struct WaterEos {
     return rho0 * c0 * c0 * e / (d * d);
   }
 
+  // dp/deta along the law.
+  double hugoniot_dp_deta(double e) const {
+    const double d = 1.0 - s * e;
+    return rho0 * c0 * c0 * (1.0 + s * e) / (d * d * d);
+  }
+
+  // Whether the law at eta pulls harder than the tension limit holds.
+  bool beyond_tension_limit(double e) const { return tension_limit > 0.0 && hugoniot_pressure(e) < -tension_limit; }
+
   double pressure(double rho) const {
-    const double pr = hugoniot_pressure(eta(rho));
-    return tension_limit > 0.0 ? std::max(pr, -tension_limit) : pr;
+    const double e = eta(rho);
+    return beyond_tension_limit(e) ? -tension_limit : hugoniot_pressure(e);
   }
 
   // Bulk sound speed sqrt(dp/drho). Beyond the tension limit the pressure is
@@ -38,12 +47,8 @@ struct WaterEos {
   // terrain's step): the speed stays that at the limit, so the step and the
   // artificial viscosity see the water as at the limit.
   double sound_speed(double rho) const {
-    if (tension_limit > 0.0 && hugoniot_pressure(eta(rho)) < -tension_limit)
-      rho = density_for_pressure(-tension_limit);
-    const double e = eta(rho);
-    const double d = 1.0 - s * e;
-    const double dp_deta = rho0 * c0 * c0 * (1.0 + s * e) / (d * d * d);
-    const double c2 = dp_deta * rho0 / (rho * rho);
+    if (beyond_tension_limit(eta(rho))) rho = density_for_pressure(-tension_limit);
+    const double c2 = hugoniot_dp_deta(eta(rho)) * rho0 / (rho * rho);
     return std::sqrt(std::max(c2, 0.0));
   }
 
@@ -52,10 +57,7 @@ struct WaterEos {
   double density_for_pressure(double p) const {
     double e = p / (rho0 * c0 * c0);
     for (int it = 0; it < 30 && s != 0.0; ++it) {
-      const double d = 1.0 - s * e;
-      const double f = rho0 * c0 * c0 * e / (d * d) - p;
-      const double df = rho0 * c0 * c0 * (1.0 + s * e) / (d * d * d);
-      e -= f / df;
+      e -= (hugoniot_pressure(e) - p) / hugoniot_dp_deta(e);
     }
     return rho0 / (1.0 - e);
   }
@@ -64,7 +66,7 @@ struct WaterEos {
   // (s = 0: c0^2 eta^2 / 2). Used in the energy balance.
   double energy_per_mass(double rho) const {
     const double e = eta(rho);
-    if (tension_limit > 0.0 && e < 0.0 && hugoniot_pressure(e) < -tension_limit) {
+    if (beyond_tension_limit(e)) {
       // Along the law up to the limit, then at the constant -tension_limit.
       const double e_lim = eta(density_for_pressure(-tension_limit));
       return hugoniot_energy(e_lim) + tension_limit * (e_lim - e) / rho0;
