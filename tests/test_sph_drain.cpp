@@ -182,4 +182,50 @@ TEST(Drain, WaterThrownAboveTheOpenTopOfTheBoxLeavesTheTerrain) {
   EXPECT_NEAR(left_kg + solver.drained_mass_kg(), initial_kg, 1e-12 * initial_kg);
 }
 
+// WaterMaterial.valid_density_*_ratio: a water particle whose density has left
+// the valid range leaves the terrain, counted with the drained water; one inside
+// it stays. The range is DualSPHysics's default, 700-1300 kg/m^3 for 1000 (its
+// RhopOutMin / RhopOutMax). One step changes a resting layer's densities by far
+// less than the margins used here (0.60 and 1.35 against 0.7 and 1.3), so the
+// outcome is the rule's, not the step's.
+TEST(Drain, WaterWhoseDensityLeavesTheValidRangeLeavesTheTerrain) {
+  const auto loaded = snow_sph::load_sph_scene(test_support::source_dir() + "/tests/test_sph_drain.textproto", {});
+  snow_sph::Model model = snow_sph::build_model(loaded->message);
+  for (auto& mat : model.materials) {
+    ASSERT_EQ(mat.kind, snow_sph::MaterialModel::Kind::water);
+    mat.valid_density_min = 0.7 * mat.density0, mat.valid_density_max = 1.3 * mat.density0;
+  }
+  snow_sph::Particles& p = model.particles;
+  double initial_kg = 0.0;
+  for (std::size_t i = 0; i < p.n_real; ++i) initial_kg += p.mass[i];
+  const double rho0 = model.materials[0].density0;
+  // Three particles of the top layer: stretched, crushed, and inside the range.
+  std::vector<std::uint32_t> top;
+  for (std::size_t i = 0; i < p.n_real && top.size() < 3; ++i)
+    if (p.z[i] > 0.015) top.push_back(p.id[i]);
+  ASSERT_EQ(top.size(), 3u);
+  auto index_of = [&](std::uint32_t id) {
+    for (std::size_t i = 0; i < p.n_real; ++i)
+      if (p.id[i] == id) return static_cast<long>(i);
+    return -1L;
+  };
+  p.density[index_of(top[0])] = 0.60 * rho0;
+  p.density[index_of(top[1])] = 1.35 * rho0;
+  p.density[index_of(top[2])] = 0.95 * rho0;
+  const std::size_t before = p.n_real;
+  snow_sph::Solver solver(model);
+  solver.prepare();
+  solver.step();
+  ASSERT_TRUE(solver.finite());
+  EXPECT_EQ(index_of(top[0]), -1);
+  EXPECT_EQ(index_of(top[1]), -1);
+  EXPECT_NE(index_of(top[2]), -1);
+  EXPECT_EQ(solver.density_out_particles(), 2u);
+  EXPECT_EQ(solver.drained_particles(), 2u);
+  EXPECT_EQ(p.n_real, before - 2);
+  double left_kg = 0.0;
+  for (std::size_t i = 0; i < p.n_real; ++i) left_kg += p.mass[i];
+  EXPECT_NEAR(left_kg + solver.drained_mass_kg(), initial_kg, 1e-12 * initial_kg);
+}
+
 }  // namespace

@@ -201,6 +201,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
                            {"sound_speed_used_m_per_s", mat.eos.c0},
                            {"sound_speed_lowered", mat.sound_speed_lowered},
                            {"tension_limit_Pa", mat.eos.tension_limit},  // 0: none
+                           {"valid_density_kg_per_m3", {mat.valid_density_min, mat.valid_density_max}},  // 0: none
                            {"note", mat.sound_speed_lowered
                                         ? "artificial compressibility: sound speed lowered for speed"
                                         : "physical sound speed"}});
@@ -502,6 +503,7 @@ void SphRun::finalize(cosim::RunRecord& record) {
       results["drained_water_particles"] = solver.drained_particles();
       results["drained_water_mass_kg"] = solver.drained_mass_kg();
       results["drained_water_share"] = solver.drained_mass_kg() / (water_kg + solver.drained_mass_kg());
+      results["water_density_out_of_range_particles"] = solver.density_out_particles();  // among the drained
     }
   }
   for (const auto& b : model.bodies) {

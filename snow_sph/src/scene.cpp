@@ -147,6 +147,10 @@ void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationRepor
       if (w.dynamic_viscosity_pa_s() < 0) r.fail(wl.where("dynamic_viscosity_Pa_s"), "must be >= 0");
       if (w.hugoniot_slope_s() < 0) r.fail(wl.where("hugoniot_slope_s"), "must be >= 0");
       if (!(w.tension_limit_pa() >= 0)) r.fail(wl.where("tension_limit_Pa"), "must be >= 0 (0: no limit)");
+      if (!(w.valid_density_min_ratio() >= 0 && w.valid_density_min_ratio() < 1))
+        r.fail(wl.where("valid_density_min_ratio"), "must be in [0, 1) (0: no bound; got " + num(w.valid_density_min_ratio()) + ")");
+      if (!(w.valid_density_max_ratio() == 0 || w.valid_density_max_ratio() > 1))
+        r.fail(wl.where("valid_density_max_ratio"), "must be > 1, or 0 for no bound (got " + num(w.valid_density_max_ratio()) + ")");
       if (w.gruneisen_ratio() != 0)
         r.fail(wl.where("gruneisen_ratio"), "only Gamma0 = 0 is supported (internal energy is not tracked)");
     } else {
@@ -236,6 +240,8 @@ MaterialModel material_from_scene(const sc::Material& material) {
     m.eos.c0 = water_sound_speed(w);
     m.eos.s = w.hugoniot_slope_s();
     m.eos.tension_limit = w.tension_limit_pa();
+    m.valid_density_min = w.valid_density_min_ratio() * w.density_kg_per_m3();
+    m.valid_density_max = w.valid_density_max_ratio() * w.density_kg_per_m3();
     m.viscosity = w.dynamic_viscosity_pa_s();
   }
   return m;

@@ -914,11 +914,18 @@ void Solver::complete_step() {
   if (any_water_) {
     // Spray that has left the open-top box: the walls are planes that go on
     // above the box, and a splash falling back along one of them is not a flow
-    // the box models (docs/water.md, "Films thinner than a particle").
+    // the box models (docs/water.md, "Films thinner than a particle"). And water
+    // whose density has left its valid range: a splash stretched until its
+    // continuity density says it is a third empty, or water crushed in a pinch,
+    // is no longer a flow the particles resolve (DualSPHysics's RhopOut).
     std::vector<std::uint32_t> spray;
-    for (std::size_t i = 0; i < p.n_real; ++i)
-      if (p.z[i] > m_.container_max[2] && m_.materials[p.material[i]].kind == MaterialModel::Kind::water)
-        spray.push_back(static_cast<std::uint32_t>(i));
+    for (std::size_t i = 0; i < p.n_real; ++i) {
+      const MaterialModel& mat = m_.materials[p.material[i]];
+      if (mat.kind != MaterialModel::Kind::water) continue;
+      const bool out_of_range = !mat.density_valid(p.density[i]);
+      if (out_of_range) ++density_out_particles_;
+      if (out_of_range || p.z[i] > m_.container_max[2]) spray.push_back(static_cast<std::uint32_t>(i));
+    }
     if (!spray.empty()) drain(spray);
   }
   if (domain_) {

@@ -76,7 +76,8 @@ void Solver::save(cosim::CheckpointWriter& out) const {
                               active_share_sum_, m_.settings.fixed_dt});
   out.put("sph.counters",
           std::vector<std::uint64_t>{steps_, interactions_, rebuilds_, drained_particles_, substepped_windows_,
-                                     most_substeps_, active_samples_, surface_held_ ? 1u : 0u});
+                                     most_substeps_, active_samples_, surface_held_ ? 1u : 0u,
+                                     density_out_particles_});
 }
 
 void Solver::restore(const cosim::CheckpointReader& in) {
@@ -138,9 +139,10 @@ void Solver::restore(const cosim::CheckpointReader& in) {
   for (int c = 0; c < 3; ++c) surface_force_[c] = d[5 + c], surface_impulse_[c] = d[8 + c];
   window_surface_kick_ = d[11], drained_mass_kg_ = d[12], window_dt_ = d[13], active_share_sum_ = d[14];
   m_.settings.fixed_dt = d[15];
-  const auto c = in.get<std::uint64_t>("sph.counters", 8);
+  const auto c = in.get<std::uint64_t>("sph.counters", 9);
   steps_ = c[0], interactions_ = c[1], rebuilds_ = c[2], drained_particles_ = c[3], substepped_windows_ = c[4];
   most_substeps_ = static_cast<std::uint32_t>(c[5]), active_samples_ = c[6], surface_held_ = c[7] != 0;
+  density_out_particles_ = c[8];
   // Per-particle work arrays sized for the restored particles (each step fills them).
   for (auto* v : {&lxx_, &lxy_, &lxz_, &lyx_, &lyy_, &lyz_, &lzx_, &lzy_, &lzz_, &stress_power_, &viscous_power_,
                   &contact_fx_, &contact_fy_, &contact_fz_, &contact_dissipation_, &plastic_increment_, &wall_power_})

@@ -24,6 +24,13 @@ struct MaterialModel {
   double reference_sound_speed = 0.0;  // c0 of the material data
   double viscosity = 0.0;              // dynamic viscosity [Pa s]
   bool sound_speed_lowered = false;
+  // A water particle whose density leaves [valid_density_min, valid_density_max]
+  // (kg/m^3; 0: no bound) leaves the terrain (WaterMaterial.valid_density_*_ratio).
+  double valid_density_min = 0.0;
+  double valid_density_max = 0.0;
+  bool density_valid(double rho) const {
+    return !(valid_density_min > 0.0 && rho < valid_density_min) && !(valid_density_max > 0.0 && rho > valid_density_max);
+  }
 };
 
 // An axis-aligned mirror plane: a rigid free-slip wall or a symmetry plane.

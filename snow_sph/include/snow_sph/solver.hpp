@@ -93,6 +93,8 @@ class Solver {
   // Water particles drained so far from films thinner than they resolve, and their mass.
   std::size_t drained_particles() const { return drained_particles_; }
   double drained_mass_kg() const { return drained_mass_kg_; }
+  // Among them, those removed because their density left the valid range.
+  std::size_t density_out_particles() const { return density_out_particles_; }
 
   // Computes the initial stress state, sound speeds and accelerations, so that
   // stability_limit_dt() is that of the first step (a coupled terrain proposes
@@ -199,6 +201,7 @@ class Solver {
   std::vector<std::uint8_t> drainable_;   // per real particle: 1 for water
   std::size_t drained_particles_ = 0;
   double drained_mass_kg_ = 0.0;
+  std::size_t density_out_particles_ = 0;
   double window_dt_ = 0.0;                 // the last window advance() took
   std::uint64_t substepped_windows_ = 0;
   std::uint32_t most_substeps_ = 1;
