@@ -152,6 +152,21 @@ TEST(Launcher, StudyResumeKeepsCompletedCasesAndRunsTheRest) {
   // Resumed again, both are kept.
   std::tie(code, out) = shell(study + " --resume");
   EXPECT_NE(out.find("case 2/2 'fine' completed before"), std::string::npos) << out;
+  // A case run by hand on another DDS domain, with checkpoints, is still the
+  // case; one with a setting that changes what it computes is not.
+  auto add_override = [&](const std::string& key, const std::string& value) {
+    const std::string file = dir + "/fine/summary.json";
+    auto summary = nlohmann::json::parse(std::ifstream(file));
+    summary["overrides"][key] = value;
+    std::ofstream(file) << summary.dump(2);
+  };
+  add_override("coupling.domain_id", "77");
+  add_override("output.checkpoint_interval_s", "0.005");
+  std::tie(code, out) = shell(study + " --resume");
+  EXPECT_NE(out.find("case 2/2 'fine' completed before"), std::string::npos) << out;
+  add_override("sph.cfl", "0.2");
+  std::tie(code, out) = shell(study + " --resume");
+  EXPECT_EQ(out.find("case 2/2 'fine' completed before"), std::string::npos) << out;
 }
 
 TEST(Launcher, InterruptedRunKeepsItsOutputs) {
