@@ -356,7 +356,7 @@ void TyreRun::step(const RimDrive& drive) {
   if (joined_) return step_on_terrain(*model_, s_, *port_, drive, exchange_s_);
   if (!step3d(*model_, s_, drive))
     throw cosim::Error("non-finite state at t = " + cosim::number_text(s_.time_s) + " s (step " +
-                       std::to_string(s_.step) + ")");
+                       std::to_string(s_.step) + "): " + describe_non_finite(*model_, s_));
 }
 
 bool TyreRun::advance() {
@@ -685,6 +685,12 @@ void TyreRun::finalize(cosim::RunRecord& record) {
   if (!stepping_) return;  // mesh only, or the model was never built
   const Model3d& model = *model_;
   if (!failed_) frames_->write(model, s_);
+  // A run stopped in its rolling stage (a signal, a failure) keeps the road force
+  // against speed up to its last step: the hydroplaning reading of what it ran.
+  if (stage_ == kRolling && stage_begun_ && road_under_terrain() && !hydroplaning_curve_) {
+    report_hydroplaning(record.results());
+    if (hydroplaning_curve_) record.results()["hydroplaning"]["stopped_in_the_rolling_stage"] = true;
+  }
   nlohmann::json& summary = record.summary();
   summary["energy"] = energy_json(s_.energy);
   summary["dt_s"] = s_.dt_s;

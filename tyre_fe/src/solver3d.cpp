@@ -303,7 +303,37 @@ void step_on_terrain(const Model3d& m, State3d& s, TerrainPort& port, const RimD
   add_terrain_loads(s);
   if (!integrate(m, s, drive))
     throw cosim::Error("non-finite state at t = " + cosim::number_text(s.time_s) + " s (step " +
-                       std::to_string(s.step) + ")");
+                       std::to_string(s.step) + "): " + describe_non_finite(m, s));
+}
+
+// Where a step went non-finite, for the failure message: the first element
+// whose energy is not finite (an inverted element) or node whose position is
+// not, and the largest contact load on a node in that step, with its node's
+// mass (a load the node cannot carry over the step shows here).
+std::string describe_non_finite(const Model3d& m, const State3d& s) {
+  auto at = [&](int i) {
+    return "(" + cosim::number_text(s.x[i]) + ", " + cosim::number_text(s.y[i]) + ", " + cosim::number_text(s.z[i]) + ") m";
+  };
+  std::string where;
+  for (std::size_t e = 0; e < s.element_energy.size() && where.empty(); ++e)
+    if (!std::isfinite(s.element_energy[e]))
+      where = "element " + std::to_string(e) + " (node " + std::to_string(m.mesh.hexes[e][0]) + " at " +
+              at(m.mesh.hexes[e][0]) + ") has a non-finite energy";
+  for (std::size_t i = 0; i < s.x.size() && where.empty(); ++i)
+    if (!std::isfinite(s.x[i] + s.y[i] + s.z[i])) where = "node " + std::to_string(i) + " has a non-finite position";
+  if (where.empty()) where = "the energies are not finite";
+  double largest = 0.0;
+  std::size_t at_node = 0;
+  for (std::size_t i = 0; i < s.contact_fx.size(); ++i) {
+    const double f = std::sqrt(s.contact_fx[i] * s.contact_fx[i] + s.contact_fy[i] * s.contact_fy[i] +
+                               s.contact_fz[i] * s.contact_fz[i]);
+    if (f > largest) largest = f, at_node = i;
+  }
+  if (largest > 0.0)
+    where += "; the largest contact load was " + cosim::number_text(largest) + " N on node " +
+             std::to_string(at_node) + " (mass " + cosim::number_text(m.node_mass_kg[at_node]) + " kg) at " +
+             at(static_cast<int>(at_node));
+  return where;
 }
 
 bool integrate(const Model3d& m, State3d& s, const RimDrive& drive) {

@@ -11,6 +11,7 @@
 // start: send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
 // so that the terrain works on the surface while the element forces are computed.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -150,6 +151,9 @@ void add_terrain_loads(State3d& s);
 void commit_window_impulse(TerrainCoupling& t);
 // Damping, rim, central-difference update, energies. Returns false if a value went non-finite.
 bool integrate(const Model3d& model, State3d& s, const RimDrive& drive);
+// Where a step that integrate() found non-finite went wrong, for the failure
+// message: the inverted element or the node, and the largest contact load.
+std::string describe_non_finite(const Model3d& model, const State3d& s);
 // compute_forces + integrate: one step of the tyre on its own (rigid road).
 bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
 
