@@ -5,6 +5,7 @@
 // compression of a linear elastic bar.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -153,6 +154,33 @@ TEST(TreadBlockStep, PushedOntoARoadCarriesTheUniaxialForce) {
   EXPECT_NEAR(s.rim.tyre_force_z_N, s.road.force_z_N, 1e-6 * expected);  // at rest: the holder carries the road's force
   EXPECT_GT(compression, 0.5e-4);  // most of the push is the bar's, not the penalty's
   EXPECT_LT(s.energy.balance_error(), 1e-3);
+}
+
+// A step that goes non-finite is reported where it went wrong: the time and
+// step, and the first element with a non-finite energy located by its first
+// node on the undeformed mesh (its current nodes are lost), not by a position
+// that reads "nan".
+TEST(TreadBlockStep, ANonFiniteStepNamesItsElementOnTheUndeformedMesh) {
+  TreadBlockGeometry g;
+  g.length_x_m = 0.02, g.width_y_m = 0.02, g.base_thickness_m = 0.01, g.element_size_m = 0.005;
+  const Mesh3D mesh = make_tread_block_mesh(g, 0.0);
+  TyreMaterials materials;
+  materials.solid[static_cast<int>(Region::tread)].kind = SolidMaterial::Kind::elastic;
+  materials.solid[static_cast<int>(Region::tread)].elastic = {4.588e6, 0.45, 1178.0};
+  const Model3d model = build_model3d(mesh, materials, CrossSection{}, Model3dOptions{});
+  State3d s = make_state3d(model, model.mesh.nodes, 0.01, 1.0);
+  s.z[0] = std::nan("");  // a node lost: its elements' energies go non-finite in the next step
+  std::size_t first = 0;  // the first element that has node 0
+  while (std::find(model.mesh.hexes[first].begin(), model.mesh.hexes[first].end(), 0) == model.mesh.hexes[first].end())
+    ++first;
+  RimDrive d;
+  ASSERT_FALSE(step3d(model, s, d));
+  const std::string what = non_finite_message(model, s);
+  EXPECT_EQ(what.rfind("non-finite state at t = ", 0), 0u) << what;
+  EXPECT_NE(what.find("element " + std::to_string(first) + " "), std::string::npos) << what;
+  EXPECT_NE(what.find("on the undeformed tyre"), std::string::npos) << what;
+  EXPECT_EQ(what.find("nan"), std::string::npos) << what;
+  EXPECT_EQ(what.find("inf"), std::string::npos) << what;
 }
 
 }  // namespace

@@ -355,8 +355,7 @@ void TyreRun::rejoin_terrain(const cosim::CheckpointReader& in, double own_dt_s)
 void TyreRun::step(const RimDrive& drive) {
   if (joined_) return step_on_terrain(*model_, s_, *port_, drive, exchange_s_);
   if (!step3d(*model_, s_, drive))
-    throw cosim::Error("non-finite state at t = " + cosim::number_text(s_.time_s) + " s (step " +
-                       std::to_string(s_.step) + "): " + describe_non_finite(*model_, s_));
+    throw cosim::Error(non_finite_message(*model_, s_));
 }
 
 bool TyreRun::advance() {

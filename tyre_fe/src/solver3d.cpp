@@ -302,23 +302,25 @@ void step_on_terrain(const Model3d& m, State3d& s, TerrainPort& port, const RimD
   }
   add_terrain_loads(s);
   if (!integrate(m, s, drive))
-    throw cosim::Error("non-finite state at t = " + cosim::number_text(s.time_s) + " s (step " +
-                       std::to_string(s.step) + "): " + describe_non_finite(m, s));
+    throw cosim::Error(non_finite_message(m, s));
 }
 
-// Where a step went non-finite, for the failure message: the first element
-// whose energy is not finite (an inverted element) or node whose position is
-// not, and the largest contact load on a node in that step, with its node's
-// mass (a load the node cannot carry over the step shows here).
-std::string describe_non_finite(const Model3d& m, const State3d& s) {
-  auto at = [&](int i) {
-    return "(" + cosim::number_text(s.x[i]) + ", " + cosim::number_text(s.y[i]) + ", " + cosim::number_text(s.z[i]) + ") m";
+// The failure message of a step that went non-finite: the first element whose
+// energy is not finite (an inverted element; where it is on the undeformed
+// tyre, its current nodes being lost) or node whose position is not, and the
+// largest contact load on a node in that step, with its node's mass (a load the
+// node cannot carry over the step shows here).
+std::string non_finite_message(const Model3d& m, const State3d& s) {
+  auto text = [](double x, double y, double z) {
+    return "(" + cosim::number_text(x) + ", " + cosim::number_text(y) + ", " + cosim::number_text(z) + ") m";
   };
   std::string where;
   for (std::size_t e = 0; e < s.element_energy.size() && where.empty(); ++e)
-    if (!std::isfinite(s.element_energy[e]))
-      where = "element " + std::to_string(e) + " (node " + std::to_string(m.mesh.hexes[e][0]) + " at " +
-              at(m.mesh.hexes[e][0]) + ") has a non-finite energy";
+    if (!std::isfinite(s.element_energy[e])) {
+      const Eigen::Vector3d& X = m.mesh.nodes[m.mesh.hexes[e][0]];
+      where = "element " + std::to_string(e) + " (its first node at " + text(X[0], X[1], X[2]) +
+              " on the undeformed tyre) has a non-finite energy";
+    }
   for (std::size_t i = 0; i < s.x.size() && where.empty(); ++i)
     if (!std::isfinite(s.x[i] + s.y[i] + s.z[i])) where = "node " + std::to_string(i) + " has a non-finite position";
   if (where.empty()) where = "the energies are not finite";
@@ -332,8 +334,9 @@ std::string describe_non_finite(const Model3d& m, const State3d& s) {
   if (largest > 0.0)
     where += "; the largest contact load was " + cosim::number_text(largest) + " N on node " +
              std::to_string(at_node) + " (mass " + cosim::number_text(m.node_mass_kg[at_node]) + " kg) at " +
-             at(static_cast<int>(at_node));
-  return where;
+             text(s.x[at_node], s.y[at_node], s.z[at_node]);
+  return "non-finite state at t = " + cosim::number_text(s.time_s) + " s (step " + std::to_string(s.step) + "): " +
+         where;
 }
 
 bool integrate(const Model3d& m, State3d& s, const RimDrive& drive) {

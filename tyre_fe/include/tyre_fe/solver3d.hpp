@@ -151,9 +151,9 @@ void add_terrain_loads(State3d& s);
 void commit_window_impulse(TerrainCoupling& t);
 // Damping, rim, central-difference update, energies. Returns false if a value went non-finite.
 bool integrate(const Model3d& model, State3d& s, const RimDrive& drive);
-// Where a step that integrate() found non-finite went wrong, for the failure
-// message: the inverted element or the node, and the largest contact load.
-std::string describe_non_finite(const Model3d& model, const State3d& s);
+// The failure message of a step that integrate() found non-finite: the time,
+// the inverted element or the node, and the largest contact load.
+std::string non_finite_message(const Model3d& model, const State3d& s);
 // compute_forces + integrate: one step of the tyre on its own (rigid road).
 bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
 
