@@ -23,6 +23,7 @@ double Progress::elapsed_s() const {
 }
 
 void Progress::update(double sim_time_s, std::uint64_t steps) {
+  if (!called_) called_ = true, first_time_s_ = sim_time_s, first_steps_ = steps, first_call_ = std::chrono::steady_clock::now();
   if (quiet_ || (steps & 15u) != 0) return;
   const auto now = std::chrono::steady_clock::now();
   const double interval = tty_ ? 0.5 : 10.0;
@@ -37,8 +38,10 @@ void Progress::finish(double sim_time_s, std::uint64_t steps) {
 
 void Progress::print(double t, std::uint64_t steps, bool final_line) {
   const double wall = elapsed_s();
-  const double rate = wall > 0 ? steps / wall : 0.0;
-  const double eta = t > 0 ? wall * (end_time_s_ - t) / t : -1.0;
+  const double since_first_s = called_ ? std::chrono::duration<double>(std::chrono::steady_clock::now() - first_call_).count() : wall;
+  const double done_s = t - first_time_s_;
+  const double rate = since_first_s > 0 ? static_cast<double>(steps - first_steps_) / since_first_s : 0.0;
+  const double eta = done_s > 0 ? since_first_s * (end_time_s_ - t) / done_s : -1.0;
   std::fprintf(stderr, "%s[%s] t = %.4g / %.4g s  step %llu  %.0f steps/s  wall %s  ETA %s%s",
                tty_ ? "\r" : "", label_.c_str(), t, end_time_s_,
                static_cast<unsigned long long>(steps), rate, format_duration(wall).c_str(),
