@@ -1,0 +1,94 @@
+// The hydroplaning scene (configs/scenes/tyre_hydroplaning.textproto, thesis
+// 4.2), coarse enough for the suite: a coupled run over DDS of the smooth cap
+// on its rigid road under 2 cm of water, the speed ramped 0 -> 28 m/s, checking
+// that the road's share of the wheel load falls as the speed rises until the
+// tyre is afloat. Coarser than the study's coarse pass in three ways, so that
+// it runs in about two minutes: 10 mm particles (two across the layer), the
+// speed ramped over 0.1 s instead of 0.4 s, and 0.04 s of loading instead of
+// 0.1 s. The short loading leaves water under the footprint when the tyre
+// starts to roll: the road's share first rises as that water is squeezed out
+// (to about 99 % at 9 m/s, measured), and only then falls; the check starts
+// at the share's peak. The speeds are not the study's result (this case gives
+// 14.5 m/s where the study's coarse pass gives 19.0 m/s: coarser water, faster
+// ramp); docs/water.md has the study.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "test_paths.hpp"
+
+namespace {
+
+using test_support::bin;
+using test_support::shell;
+
+struct ShareCurve {
+  std::vector<double> speed_m_per_s, road_share;
+};
+
+ShareCurve read_share_curve(const std::string& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "time_s,speed_m_per_s,road_force_N,water_lift_N,road_share") << file;
+  ShareCurve c;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    std::vector<double> v;
+    while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
+    if (v.size() != 5) continue;
+    c.speed_m_per_s.push_back(v[1]), c.road_share.push_back(v[4]);
+  }
+  return c;
+}
+
+TEST(CoupledHydroplaning, TheRoadsShareFallsAsTheSpeedRisesUntilTheTyreIsAfloat) {
+  const std::string dir = test_support::scratch("coupled_hydroplaning");
+  // time.max_steps bounds the run (46,495 tyre steps measured to the end of the
+  // rolling stage); a run stopped by it has not floated and fails below.
+  auto [code, out] = shell(
+      bin() + "/cosim run " + test_support::scene_path("tyre_hydroplaning") + " --out " + dir +
+      " --dds cyclone --domain 21 --no-vtk --quiet --set sph.particle_spacing_m=0.01"
+      " --set sph.container.max.x=1.5 --set sph.blocks[0].region.max.x=1.5"
+      " --set tyre.rim.speed_ramp_time_s=0.1 --set tyre.stages.rolling_s=0.1 --set tyre.stages.loading_s=0.04"
+      " --set time.max_steps=60000");
+  ASSERT_EQ(code, 0) << out;
+  std::ifstream summary_file(dir + "/tyre/summary.json");
+  const nlohmann::json tyre = nlohmann::json::parse(summary_file);
+  const auto& h = tyre["results"]["hydroplaning"];
+  ASSERT_TRUE(h.is_object()) << tyre.dump(1);
+  EXPECT_TRUE(h["ended_afloat"].get<bool>());
+  ASSERT_TRUE(h["critical_velocity_m_per_s"].is_number()) << h.dump(1);
+  const double critical = h["critical_velocity_m_per_s"];
+  EXPECT_LT(critical, h["top_speed_m_per_s"].get<double>());
+
+  const ShareCurve c = read_share_curve(dir + "/tyre/road_share_vs_speed.csv");
+  ASSERT_GT(c.road_share.size(), 50u);
+  const std::size_t peak = static_cast<std::size_t>(
+      std::max_element(c.road_share.begin(), c.road_share.end()) - c.road_share.begin());
+  // The tyre stood on the road before it planed: the road carried most of the load.
+  EXPECT_GT(c.road_share[peak], 0.5) << "at " << c.speed_m_per_s[peak] << " m/s";
+  EXPECT_LT(c.speed_m_per_s[peak], critical);
+  // From the peak on, the 5 ms mean share never climbs back by more than 5 % of
+  // the load above its lowest value so far. The per-step swing of particles
+  // entering and leaving the footprint (+-300 N, test_hydroplaning.cpp) is
+  // averaged to ~1 % by the mean; measured largest climb 1e-15. A tyre whose road
+  // force rose again with speed (a bounce, a wave) would climb by far more.
+  double lowest = c.road_share[peak], climb = 0.0, climb_speed = 0.0;
+  for (std::size_t i = peak; i < c.road_share.size(); ++i) {
+    lowest = std::min(lowest, c.road_share[i]);
+    if (c.road_share[i] - lowest > climb) climb = c.road_share[i] - lowest, climb_speed = c.speed_m_per_s[i];
+  }
+  EXPECT_LT(climb, 0.05) << "the road's share climbed back by " << climb << " at " << climb_speed << " m/s";
+  EXPECT_LT(c.road_share.back(), 0.10);
+}
+
+}  // namespace
