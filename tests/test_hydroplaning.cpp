@@ -63,7 +63,31 @@ TEST(Hydroplaning, ACriterionNotReachedByTheTopSpeedIsNaN) {
   EXPECT_NEAR(tyre_fe::speed_below_road_share(curve, 0.6), vc * std::sqrt(0.4), kTolerance);
 }
 
+// The tread circle of radius 5 cut by a surface 3 below the centre: 4 ahead (3-4-5).
+TEST(Hydroplaning, TheTreadMeetsTheSurfaceWhereTheCircleCutsIt) {
+  EXPECT_DOUBLE_EQ(tyre_fe::tread_lead_at_surface_m(0.5, 0.3), 0.4);
+  EXPECT_EQ(tyre_fe::tread_lead_at_surface_m(0.3, 0.5), 0.0);  // the tyre above the water
+}
+
+// The scene's ramp: x(t) = 28 t^2 / (2 0.4) from x = 0 at t = 0 (the speed is
+// linear, so the trapezoid integrates it exactly; round-off ~1e-15 m). With the
+// rim's last position given, the samples read are those with x + lead below the
+// water's end: t < sqrt((end - lead) 2 0.4 / 28).
+TEST(Hydroplaning, TheReadingEndsWhereTheTreadReachesTheEndOfTheWater) {
+  const Ramp r = make_ramp(4000.0, 15.0, 0.0);
+  const double top = 28.0, ramp = 0.4, lead = 0.17, end = 2.3;
+  const double last_x = top * r.t.back() * r.t.back() / (2 * ramp);
+  const std::size_t n = tyre_fe::samples_over_water(r.t, r.v, last_x, lead, end);
+  const double t_end = std::sqrt((end - lead) * 2 * ramp / top);
+  ASSERT_GT(n, 0u);
+  ASSERT_LT(n, r.t.size());
+  EXPECT_LT(r.t[n - 1], t_end);
+  EXPECT_GE(r.t[n], t_end);
+  EXPECT_EQ(tyre_fe::samples_over_water(r.t, r.v, last_x, lead, 10.0), r.t.size());  // never reaches the end
+}
+
 TEST(Hydroplaning, MismatchedSeriesAndABadLoadAreRefused) {
+  EXPECT_THROW(tyre_fe::samples_over_water({0, 1}, {0}, 0, 0, 1), cosim::Error);
   EXPECT_THROW(tyre_fe::road_share_curve({0, 1}, {0}, {1, 1}, 4000, 0.005), cosim::Error);
   EXPECT_THROW(tyre_fe::road_share_curve({0, 1}, {0, 1}, {1, 1}, 0, 0.005), cosim::Error);
 }

@@ -36,4 +36,22 @@ double speed_below_road_share(const RoadShareCurve& c, double share) {
   return v[i - 1] + f * (v[i] - v[i - 1]);
 }
 
+double tread_lead_at_surface_m(double radius_m, double rim_height_m) {
+  return std::fabs(rim_height_m) < radius_m ? std::sqrt(radius_m * radius_m - rim_height_m * rim_height_m) : 0.0;
+}
+
+std::size_t samples_over_water(const std::vector<double>& t, const std::vector<double>& v, double last_rim_x_m,
+                               double lead_m, double water_end_x_m) {
+  if (t.size() != v.size())
+    throw cosim::Error("samples over water: " + std::to_string(t.size()) + " times and " + std::to_string(v.size()) +
+                       " speeds");
+  if (t.empty()) return 0;
+  std::vector<double> x(t.size());
+  x.back() = last_rim_x_m;
+  for (std::size_t i = t.size() - 1; i > 0; --i) x[i - 1] = x[i] - 0.5 * (v[i] + v[i - 1]) * (t[i] - t[i - 1]);
+  std::size_t n = 0;
+  while (n < x.size() && x[n] + lead_m < water_end_x_m) ++n;
+  return n;
+}
+
 }  // namespace tyre_fe

@@ -1,6 +1,7 @@
 #include "tyre_fe/run.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <optional>
 #include <cstdio>
@@ -652,9 +653,24 @@ bool TyreRun::afloat_now() {
 }
 
 void TyreRun::report_hydroplaning(nlohmann::json& results) {
-  if (ramp_t_.size() < 2) return;
-  const RoadShareCurve curve = road_share_curve(ramp_t_, ramp_v_, ramp_road_fz_, load_, kHydroplaningFilter_s);
-  const std::vector<double> lift = cosim::centred_moving_mean(ramp_t_, ramp_lift_fz_, kHydroplaningFilter_s);
+  // The reading ends where the tread reaches the downstream end of the water
+  // (the scene's terrain blocks): beyond it the tyre lands on the bare road.
+  double water_end_x = std::numeric_limits<double>::infinity(), surface_z = 0.0;
+  if (scene_.sph().blocks_size() > 0) {
+    water_end_x = scene_.sph().container().max().x(), surface_z = -water_end_x;
+    double block_end = -water_end_x;
+    for (const auto& b : scene_.sph().blocks())
+      block_end = std::max(block_end, b.region().max().x()), surface_z = std::max(surface_z, b.region().max().z());
+    water_end_x = std::min(water_end_x, block_end);
+  }
+  const double rim_height = results.value("loaded_radius_m", radius0_) + s_.road.height_m - surface_z;
+  const double lead = tread_lead_at_surface_m(radius0_, rim_height);
+  const std::size_t n = samples_over_water(ramp_t_, ramp_v_, s_.rim.x, lead, water_end_x);
+  if (n < 2) return;
+  auto first_n = [n](const std::vector<double>& v) { return std::vector<double>(v.begin(), v.begin() + long(n)); };
+  const std::vector<double> t = first_n(ramp_t_), v = first_n(ramp_v_);
+  const RoadShareCurve curve = road_share_curve(t, v, first_n(ramp_road_fz_), load_, kHydroplaningFilter_s);
+  const std::vector<double> lift = cosim::centred_moving_mean(t, first_n(ramp_lift_fz_), kHydroplaningFilter_s);
   auto* csv = &record_->series("road_share_vs_speed.csv",
                                {"time_s", "speed_m_per_s", "road_force_N", "water_lift_N", "road_share"});
   double next = 0.0, least = 1e30;
@@ -676,7 +692,10 @@ void TyreRun::report_hydroplaning(nlohmann::json& results) {
       {"speed_below_road_share_m_per_s", {{"50_percent", speed(0.5)}, {"25_percent", speed(0.25)}, {"10_percent", speed(0.1)}}},
       {"least_road_share", least},
       {"ended_afloat", afloat_},
-      {"top_speed_m_per_s", curve.speed_m_per_s.back()}};
+      {"top_speed_m_per_s", curve.speed_m_per_s.back()},
+      {"water_end_x_m", std::isfinite(water_end_x) ? nlohmann::json(water_end_x) : nlohmann::json()},
+      {"tread_lead_at_surface_m", lead},
+      {"reached_the_end_of_the_water_at_speed_m_per_s", n < ramp_t_.size() ? nlohmann::json(ramp_v_[n]) : nlohmann::json()}};
   hydroplaning_curve_ = true;
 }
 

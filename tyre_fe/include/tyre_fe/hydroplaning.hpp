@@ -5,6 +5,7 @@
 // the speed is the curve every criterion is read from; the critical velocity
 // is the speed from which that share stays below a stated fraction
 // (docs/water.md says why 10 %).
+#include <cstddef>
 #include <vector>
 
 namespace tyre_fe {
@@ -26,6 +27,19 @@ RoadShareCurve road_share_curve(const std::vector<double>& time_s, const std::ve
 // there to the curve's end it stays below), linear between samples; the first
 // speed if it is below from the start; NaN if it is not below at the end.
 double speed_below_road_share(const RoadShareCurve& curve, double share);
+
+// Where the tyre's tread meets the water surface ahead of the rim [m]: the
+// undeformed tread circle (radius_m) cut by the surface, the rim
+// rim_height_m above it; 0 if the circle does not reach the surface.
+double tread_lead_at_surface_m(double radius_m, double rim_height_m);
+
+// How many of the first samples to read: those before the tread's leading
+// edge at the water surface (rim x + lead_m) reaches the water's downstream
+// end. After it the tyre runs out of water: the lift fades and the tyre lands
+// on the bare road, which is not hydroplaning. The rim's positions are the
+// speeds integrated back (trapezoid) from its position at the last sample.
+std::size_t samples_over_water(const std::vector<double>& time_s, const std::vector<double>& speed_m_per_s,
+                               double last_rim_x_m, double lead_m, double water_end_x_m);
 
 // The criterion of the reported critical velocity: the road carries less than this share of the load.
 inline constexpr double kHydroplaningRoadShare = 0.10;
