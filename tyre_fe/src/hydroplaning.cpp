@@ -24,12 +24,14 @@ RoadShareCurve road_share_curve(const std::vector<double>& time_s, const std::ve
   return c;
 }
 
-double speed_below_road_share(const RoadShareCurve& c, double share) {
+double speed_below_road_share(const RoadShareCurve& c, double share, double held_s) {
   const auto& y = c.road_share;
   const auto& v = c.speed_m_per_s;
-  if (y.empty() || !(y.back() < share)) return std::numeric_limits<double>::quiet_NaN();
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  if (y.empty() || !(y.back() < share)) return none;
   std::size_t i = y.size() - 1;
   while (i > 0 && y[i - 1] < share) --i;  // the first sample of the last run below
+  if (c.time_s.back() - c.time_s[i] < held_s) return none;
   if (i == 0) return v.front();
   // Crossing between samples i - 1 (at or above) and i (below).
   const double f = (y[i - 1] - share) / (y[i - 1] - y[i]);

@@ -681,7 +681,7 @@ void TyreRun::report_hydroplaning(nlohmann::json& results) {
     next = curve.time_s[i] + csv_interval_;
   }
   auto speed = [&](double share) {
-    const double v = speed_below_road_share(curve, share);
+    const double v = speed_below_road_share(curve, share, kHydroplaningFilter_s);
     return std::isnan(v) ? nlohmann::json() : nlohmann::json(v);
   };
   results["hydroplaning"] = {

@@ -25,8 +25,11 @@ RoadShareCurve road_share_curve(const std::vector<double>& time_s, const std::ve
 
 // The speed at which the share falls below `share` for the last time (from
 // there to the curve's end it stays below), linear between samples; the first
-// speed if it is below from the start; NaN if it is not below at the end.
-double speed_below_road_share(const RoadShareCurve& curve, double share);
+// speed if it is below from the start; NaN if it is not below at the end, or
+// below for less than `held_s` before the end. A fall within the last moments
+// of a reading (the curve's mean there is one-sided; the tyre reaches the end
+// of its water) is not established; the run calls it with the mean's width.
+double speed_below_road_share(const RoadShareCurve& curve, double share, double held_s = 0.0);
 
 // Where the tyre's tread meets the water surface ahead of the rim [m]: the
 // undeformed tread circle (radius_m) cut by the surface, the rim
