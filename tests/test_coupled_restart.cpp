@@ -96,10 +96,17 @@ TEST_F(CoupledRestart, AStopSignalCheckpointsEveryProcessAtOneExchangeAndTheRest
               std::string::npos)
         << dir << ": " << s["error"];
   }
+  const double stopped_wall_s = summary(out + "/summary.json")["wall_time_s"].get<double>();
+  EXPECT_GT(stopped_wall_s, 0.0);
   auto args = run_args(out, 41);
   args.push_back("--restart");
   ASSERT_EQ(cosim::run_child(cosim_bin(), args), 0) << read_file(out + ".log");
-  EXPECT_EQ(summary(out + "/summary.json")["restarted_from_exchange"], stop);
+  const auto restarted = summary(out + "/summary.json");
+  EXPECT_EQ(restarted["restarted_from_exchange"], stop);
+  // The run's wall time is both attempts' (what the whole run cost), each kept apart.
+  EXPECT_EQ(restarted["wall_time_before_restart_s"].get<double>(), stopped_wall_s);
+  EXPECT_EQ(restarted["wall_time_s"].get<double>(),
+            stopped_wall_s + restarted["wall_time_this_attempt_s"].get<double>());
   expect_same_run(out);
 }
 
