@@ -23,7 +23,8 @@ double Progress::elapsed_s() const {
 }
 
 void Progress::update(double sim_time_s, std::uint64_t steps) {
-  if (!called_) called_ = true, first_time_s_ = sim_time_s, first_steps_ = steps, first_call_ = std::chrono::steady_clock::now();
+  if (!called_)
+    called_ = true, first_time_s_ = sim_time_s, first_steps_ = steps, first_call_ = std::chrono::steady_clock::now();
   if (quiet_ || (steps & 15u) != 0) return;
   const auto now = std::chrono::steady_clock::now();
   const double interval = tty_ ? 0.5 : 10.0;
@@ -38,7 +39,8 @@ void Progress::finish(double sim_time_s, std::uint64_t steps) {
 
 void Progress::print(double t, std::uint64_t steps, bool final_line) {
   const double wall = elapsed_s();
-  const double since_first_s = called_ ? std::chrono::duration<double>(std::chrono::steady_clock::now() - first_call_).count() : wall;
+  const double since_first_s =
+      called_ ? std::chrono::duration<double>(std::chrono::steady_clock::now() - first_call_).count() : wall;
   const double done_s = t - first_time_s_;
   const double rate = since_first_s > 0 ? static_cast<double>(steps - first_steps_) / since_first_s : 0.0;
   const double eta = done_s > 0 ? since_first_s * (end_time_s_ - t) / done_s : -1.0;

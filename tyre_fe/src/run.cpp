@@ -655,22 +655,24 @@ bool TyreRun::afloat_now() {
 void TyreRun::report_hydroplaning(nlohmann::json& results) {
   // The reading ends where the tread reaches the downstream end of the water
   // (the scene's terrain blocks): beyond it the tyre lands on the bare road.
-  double water_end_x = std::numeric_limits<double>::infinity(), surface_z = 0.0;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  double water_end_x = kNone, surface_z = 0.0;
   if (scene_.sph().blocks_size() > 0) {
-    water_end_x = scene_.sph().container().max().x(), surface_z = -water_end_x;
-    double block_end = -water_end_x;
+    double block_end = -kNone;
+    surface_z = -kNone;
     for (const auto& b : scene_.sph().blocks())
       block_end = std::max(block_end, b.region().max().x()), surface_z = std::max(surface_z, b.region().max().z());
-    water_end_x = std::min(water_end_x, block_end);
+    water_end_x = std::min(scene_.sph().container().max().x(), block_end);
   }
   const double rim_height = results.value("loaded_radius_m", radius0_) + s_.road.height_m - surface_z;
   const double lead = tread_lead_at_surface_m(radius0_, rim_height);
   const std::size_t n = samples_over_water(ramp_t_, ramp_v_, s_.rim.x, lead, water_end_x);
   if (n < 2) return;
   auto first_n = [n](const std::vector<double>& v) { return std::vector<double>(v.begin(), v.begin() + long(n)); };
-  const std::vector<double> t = first_n(ramp_t_), v = first_n(ramp_v_);
-  const RoadShareCurve curve = road_share_curve(t, v, first_n(ramp_road_fz_), load_, kHydroplaningFilter_s);
-  const std::vector<double> lift = cosim::centred_moving_mean(t, first_n(ramp_lift_fz_), kHydroplaningFilter_s);
+  const std::vector<double> times = first_n(ramp_t_);
+  const RoadShareCurve curve =
+      road_share_curve(times, first_n(ramp_v_), first_n(ramp_road_fz_), load_, kHydroplaningFilter_s);
+  const std::vector<double> lift = cosim::centred_moving_mean(times, first_n(ramp_lift_fz_), kHydroplaningFilter_s);
   auto* csv = &record_->series("road_share_vs_speed.csv",
                                {"time_s", "speed_m_per_s", "road_force_N", "water_lift_N", "road_share"});
   double next = 0.0, least = 1e30;
