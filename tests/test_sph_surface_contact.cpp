@@ -320,6 +320,47 @@ TEST(SurfaceContact, AnEdgeContactsPressurePartIsAlongTheLineFromTheEdge) {
   EXPECT_NEAR(l.facet_pressure_z_N[0], f / std::sqrt(2.0), 1e-9);
 }
 
+// A sipe is a zero-width slit (tyre_fe/revolve.cpp): two coincident faces at
+// x = 0 reaching 8 mm into the tread from its top (z = 0, the terrain below).
+// A particle 1 mm inside the rubber, 2 mm to the side of the slit, is in front
+// of one face (gap 2 mm) and behind the other (2 mm): both would push it, the
+// slit's faces apart with k r and k (r - 2 mm) and the particle towards the
+// slit. It meets the rubber through the tread top only, which pushes it along
+// -z with the force of a radius's penetration (the cap of a particle past the
+// facet plane); the faces carry nothing. Exact arithmetic but for the
+// bilinear weights' rounding, hence 1e-9 N on forces of 500 N.
+TEST(SurfaceContact, AClosedSlitsFacesTakeNoParticle) {
+  ContactSurface s;
+  add_flat_quad(s, -0.02, -0.01, 0.0, 0.01, 0.0, 0.0);  // the tread top either side of the slit
+  add_flat_quad(s, 0.0, -0.01, 0.02, 0.01, 0.0, 0.0);
+  auto add_slit_face = [&](double outward_x) {
+    const auto base = static_cast<std::uint32_t>(s.x.size());
+    const double ys[4] = {-0.01, -0.01, 0.01, 0.01}, zs[4] = {0.0, 0.008, 0.008, 0.0};
+    for (int a = 0; a < 4; ++a) {
+      const int k = outward_x > 0 ? a : 3 - a;  // reversed order, reversed normal
+      s.x.push_back(0.0), s.y.push_back(ys[k]), s.z.push_back(zs[k]);
+      s.vx.push_back(0), s.vy.push_back(0), s.vz.push_back(0);
+    }
+    for (std::uint32_t a = 0; a < 4; ++a) s.facet_nodes.push_back(base + a);
+    s.friction_coefficient.push_back(0.0);
+  };
+  add_slit_face(+1.0);  // the face of the block on x < 0
+  add_slit_face(-1.0);  // the face of the block on x > 0
+  Particle open{0.002, 0.0, 0.001};
+  const SurfaceContactResult without_rule = contact(s, open);
+  ASSERT_GT(without_rule.particles_in_contact[2] + without_rule.particles_in_contact[3], 0u)
+      << "the slit's faces must be within reach of the particle for the test to mean anything";
+  EXPECT_GT(std::fabs(open.ax * kMass), 0.1 * kStiffness * kRadius);
+
+  s.closed_slit = {0, 0, 1, 1};
+  Particle p{0.002, 0.0, 0.001};
+  const SurfaceContactResult l = contact(s, p);
+  EXPECT_NEAR(p.ax * kMass, 0.0, 1e-9);
+  EXPECT_NEAR(p.az * kMass, -kStiffness * kRadius, 1e-9);
+  EXPECT_EQ(l.particles_in_contact[2] + l.particles_in_contact[3], 0u);
+  EXPECT_NEAR(l.total_fz_N, kStiffness * kRadius, 1e-9);
+}
+
 // The deepest penetration is radius - d for the particle centre's signed
 // distance d to the facet (or to the edge). The heights are exact here and the
 // facet's normal is exactly -z, so the only error is the rounding of radius - d:

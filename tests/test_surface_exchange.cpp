@@ -95,6 +95,12 @@ TEST(SurfaceExchange, TheTerrainSeesTheFacetsNearItWhereTheTyreHasThem) {
     EXPECT_EQ(terrain_view.friction_coefficient[f], sent.friction_coefficient[f]);
     EXPECT_EQ(terrain_view.facet_id[f], sent.facets[f]);
   }
+  EXPECT_EQ(terrain_view.closed_slit, std::vector<char>(2, 0));  // no sipe on the strip
+  // A sipe's face (FacetTag::sipe_wall) is a closed slit to the terrain: no particle takes it.
+  tyre_fe::ContactSurfaceDef siped = surface;
+  siped.facet_tags[sent.facets[1]] = cosim::FacetTag::sipe_wall;
+  snow_sph::assemble_contact_surface(siped, sent, terrain_view, scratch);
+  EXPECT_EQ(terrain_view.closed_slit, (std::vector<char>{0, 1}));
 }
 
 TEST(SurfaceExchange, EachLoadComesBackToTheNodeItWasComputedFor) {

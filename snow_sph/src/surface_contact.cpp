@@ -201,6 +201,9 @@ void assemble_contact_surface(const cosim::SurfaceTopology& topology, const cosi
   if (topology.node_mass_kg.size() == topology.node_count())
     for (std::uint32_t node : state.nodes) s.node_mass_kg.push_back(topology.node_mass_kg[node]);
   s.facet_id.assign(state.facets.begin(), state.facets.end());
+  s.closed_slit.resize(state.facets.size());
+  for (std::size_t j = 0; j < state.facets.size(); ++j)
+    s.closed_slit[j] = topology.facet_tags[state.facets[j]] == cosim::FacetTag::sipe_wall;
 }
 
 void sparse_surface_loads(const cosim::SurfaceState& state, const SurfaceContactResult& l, cosim::SurfaceLoads& out) {
@@ -431,7 +434,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     V3 best_point = V3::Zero();
     for (std::uint32_t e = grid.begin[cell]; e < grid.begin[cell + 1]; ++e) {
       const std::uint32_t f = grid.entries[e];
-      if (area[f] <= 0) continue;
+      if (area[f] <= 0 || (!s.closed_slit.empty() && s.closed_slit[f])) continue;
       const std::uint32_t* q = &s.facet_nodes[4 * f];
       const V3 a = node(q[0]), b = node(q[1]), cc = node(q[2]), d = node(q[3]);
       const V3& n = normal[f];

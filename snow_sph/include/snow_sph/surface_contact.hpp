@@ -24,6 +24,14 @@ struct ContactSurface {
   std::vector<std::uint32_t> facet_id;
   // Lumped mass of each node [kg] as the owner integrates it (empty: not known).
   std::vector<double> node_mass_kg;
+  // Per facet, 1 for a face of a sipe (FacetTag::sipe_wall; empty: none). The
+  // tyre's sipes are zero-width slits, their two faces coincident: what lies in
+  // front of one face is the rubber behind the other, so a particle can touch a
+  // face only from inside the tread, never from the water or snow. The thesis's
+  // sipes are 1 mm wide, narrower than any particle here (5-20 mm), so none
+  // enters one either. The faces are left out of the contact; a particle at a
+  // sipe's mouth meets the tread top on both sides of it.
+  std::vector<char> closed_slit;
   std::size_t facet_count() const { return facet_nodes.size() / 4; }
 };
 
