@@ -109,11 +109,15 @@ FacetGrid bin_facets(const ContactSurface& s, double reach) {
       for (int j = c0[1]; j <= c1[1]; ++j)
         for (int i = c0[0]; i <= c1[0]; ++i) visit(g.index(i, j, k));
   };
-  for (std::size_t f = 0; f < nf; ++f) each_cell(f, [&](int c) { ++count[c + 1]; });
+  // A closed slit's faces take no particle (ContactSurface::closed_slit): not binned, never visited.
+  auto takes_particles = [&](std::size_t f) { return s.closed_slit.empty() || !s.closed_slit[f]; };
+  for (std::size_t f = 0; f < nf; ++f)
+    if (takes_particles(f)) each_cell(f, [&](int c) { ++count[c + 1]; });
   for (std::size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
   g.begin = count;
   g.entries.resize(count[cells]);
-  for (std::size_t f = 0; f < nf; ++f) each_cell(f, [&](int c) { g.entries[count[c]++] = static_cast<std::uint32_t>(f); });
+  for (std::size_t f = 0; f < nf; ++f)
+    if (takes_particles(f)) each_cell(f, [&](int c) { g.entries[count[c]++] = static_cast<std::uint32_t>(f); });
   return g;
 }
 
@@ -434,7 +438,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
     V3 best_point = V3::Zero();
     for (std::uint32_t e = grid.begin[cell]; e < grid.begin[cell + 1]; ++e) {
       const std::uint32_t f = grid.entries[e];
-      if (area[f] <= 0 || (!s.closed_slit.empty() && s.closed_slit[f])) continue;
+      if (area[f] <= 0) continue;
       const std::uint32_t* q = &s.facet_nodes[4 * f];
       const V3 a = node(q[0]), b = node(q[1]), cc = node(q[2]), d = node(q[3]);
       const V3& n = normal[f];
