@@ -11,7 +11,9 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "cosim/error.hpp"
 #include "cosim/surface_exchange.hpp"
@@ -101,6 +103,69 @@ TEST(SurfaceExchange, TheTerrainSeesTheFacetsNearItWhereTheTyreHasThem) {
   siped.facet_tags[sent.facets[1]] = cosim::FacetTag::sipe_wall;
   snow_sph::assemble_contact_surface(siped, sent, terrain_view, scratch);
   EXPECT_EQ(terrain_view.closed_slit, (std::vector<char>{0, 1}));
+}
+
+// A splash above the scene's contact band meets the surface it flies at. A
+// wall of the tyre's surface faces -x from 5 to 15 cm above the terrain, above
+// the 2 cm band. Two water particles (5 mm, radius 2.5 mm) fly at it: one
+// across, its centre 0.8 radii below the wall's lower edge (it touches the
+// edge only), the other straight up past that edge at 60 m/s, 6 mm per
+// window, more than two radii. Sent the band and the particles' reach of the
+// last exchange (snow_sph::particle_reach_z), the terrain computes the same
+// contact at every exchange as with the whole surface sent; sent the band
+// alone, each particle passes the wall untouched.
+TEST(SurfaceExchange, ASplashAboveTheBandMeetsTheSurfaceItFliesAt) {
+  tyre_fe::Mesh3D mesh;
+  mesh.nodes.push_back({0.2, 0.0, 0.05});
+  mesh.nodes.push_back({0.2, 0.0, 0.15});
+  mesh.nodes.push_back({0.2, 0.1, 0.15});
+  mesh.nodes.push_back({0.2, 0.1, 0.05});
+  mesh.facets.push_back({{0, 1, 2, 3}, FacetTag::sidewall, 0});  // normal -x
+  const tyre_fe::ContactSurfaceDef surface = tyre_fe::make_contact_surface(mesh);
+  const tyre_fe::State3d s = state_of(mesh);
+  snow_sph::SurfaceContactParameters params;
+  params.particle_radius_m = 0.0025;
+  params.stiffness_N_per_m = 1e3;  // stable step 2 sqrt(m / k) = 0.7 ms, seven windows
+  const double r = params.particle_radius_m, window_s = 1e-4, band_m = 0.02, gravity = -9.81;
+  const double mass = 1.25e-4;  // 5 mm of water
+  struct Flight {
+    double x, y, z, vx, vy, vz, ax = 0, ay = 0, az = 0;
+    double reach_z_m = -std::numeric_limits<double>::max();
+    int contacts = 0;
+  };
+  // One exchange: the surface below `band` (and the particle's reach when
+  // `follow_reach`), the contact, the particle's reach, a kick and a drift.
+  std::vector<std::int64_t> scratch;
+  auto exchange = [&](Flight& p, double band, bool follow_reach) {
+    cosim::SurfaceState sent;
+    tyre_fe::surface_near_terrain(surface, s, follow_reach ? std::max(band, p.reach_z_m) : band, sent);
+    sent.friction_coefficient.assign(sent.facets.size(), 0.3);
+    snow_sph::ContactSurface view;
+    snow_sph::assemble_contact_surface(surface, sent, view, scratch);
+    snow_sph::SurfaceContactResult loads;
+    p.ax = 0.0, p.ay = 0.0, p.az = gravity;
+    snow_sph::surface_contact(view, params, 1, &p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &mass, window_s, &p.ax, &p.ay,
+                              &p.az, loads);
+    if (loads.total_fx_N != 0.0 || loads.total_fz_N != 0.0) ++p.contacts;
+    p.reach_z_m = snow_sph::particle_reach_z(1, &p.z, &p.vz, &p.az, window_s, r);
+    p.vx += p.ax * window_s, p.vy += p.ay * window_s, p.vz += p.az * window_s;
+    p.x += p.vx * window_s, p.y += p.vy * window_s, p.z += p.vz * window_s;
+  };
+  const Flight across{0.19, 0.05, 0.05 - 0.8 * r, 10.0, 0.0, 0.0};
+  const Flight up{0.2 - 0.6 * r, 0.05, 0.0329, 0.0, 0.0, 60.0};  // 0.1 mm below the reach of z + 2 r at exchange 2
+  for (const Flight& start : {across, up}) {
+    Flight followed = start, whole = start, band_only = start;
+    for (int k = 0; k < 20; ++k) {
+      exchange(followed, band_m, true);
+      exchange(whole, 10.0, false);
+      exchange(band_only, band_m, false);
+      // Tolerance: the same contacts summed over different facet lists, round-off only.
+      ASSERT_NEAR(followed.ax, whole.ax, 1e-9 * (1.0 + std::abs(whole.ax))) << "exchange " << k;
+      ASSERT_NEAR(followed.az, whole.az, 1e-9 * (1.0 + std::abs(whole.az))) << "exchange " << k;
+    }
+    EXPECT_GT(whole.contacts, 0);  // the particle did meet the wall, above the band
+    EXPECT_EQ(band_only.contacts, 0);
+  }
 }
 
 TEST(SurfaceExchange, EachLoadComesBackToTheNodeItWasComputedFor) {
@@ -223,6 +288,10 @@ TEST(SurfaceExchange, NonFiniteOrImpossibleValuesAreRefusedByEntry) {
   loads.fz_N = {-INFINITY};
   refused([&] { cosim::check_surface_loads(loads, surface, "ContactLoads of step 2"); },
           "ContactLoads of step 2: a force, area or pressure[0] is not a finite number");
+  loads.fz_N = {0.0};
+  loads.particle_reach_z_m = std::nan("");
+  refused([&] { cosim::check_surface_loads(loads, surface, "ContactLoads of step 3"); },
+          "ContactLoads of step 3: particle_reach_z_m is not a finite number");
 
   cosim::SurfaceTopology topology = surface;
   topology.node_mass_kg.assign(topology.node_count(), 0.1);

@@ -97,6 +97,7 @@ void check_surface_loads(const SurfaceLoads& l, const SurfaceTopology& topology,
                         &l.pressure_z_N, &l.tangential_x_N, &l.tangential_y_N, &l.tangential_z_N,
                         &l.contact_area_m2, &l.pressure_Pa})
     check_finite(*v, what, "a force, area or pressure");
+  if (!std::isfinite(l.particle_reach_z_m)) throw Error(what + ": particle_reach_z_m is not a finite number");
 }
 
 }  // namespace cosim

@@ -25,6 +25,7 @@ void copy_loads(const From& a, To& b) {
   b.tangential_x_N = a.tangential_x_N, b.tangential_y_N = a.tangential_y_N, b.tangential_z_N = a.tangential_z_N;
   b.contact_area_m2 = a.contact_area_m2;
   b.pressure_Pa = a.pressure_Pa;
+  b.particle_reach_z_m = a.particle_reach_z_m;
 }
 
 template <class From, class To>

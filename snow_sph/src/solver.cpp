@@ -594,6 +594,10 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   surface_force_[0] = fx, surface_force_[1] = fy, surface_force_[2] = fz;
   surface_held_ = true;
   if (!surface_loads_.drained.empty()) drain(surface_loads_.drained);
+  // Where the owner's next surface must reach down to: the particles' reach over the next window.
+  const double next_window = m_.settings.fixed_dt > 0.0 ? m_.settings.fixed_dt : dt;
+  surface_loads_.particle_reach_z_m = particle_reach_z(p.n_real, p.z.data(), p.vz.data(), p.az.data(), next_window,
+                                                       surface_params_.particle_radius_m);
 }
 
 // Removes the drained particles (ascending indices) from the flow: their mass

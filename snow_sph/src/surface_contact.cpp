@@ -210,8 +210,17 @@ void assemble_contact_surface(const cosim::SurfaceTopology& topology, const cosi
     s.closed_slit[j] = topology.facet_tags[state.facets[j]] == cosim::FacetTag::sipe_wall;
 }
 
+double particle_reach_z(std::size_t n, const double* z, const double* vz, const double* az, double window_s,
+                        double particle_radius_m) {
+  double top = -std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < n; ++i)
+    top = std::max(top, z[i] + std::max(0.0, (vz[i] + az[i] * window_s) * window_s));
+  return n == 0 ? top : top + 2.0 * particle_radius_m;
+}
+
 void sparse_surface_loads(const cosim::SurfaceState& state, const SurfaceContactResult& l, cosim::SurfaceLoads& out) {
   out.exchange = state.exchange, out.time_s = state.time_s;
+  out.particle_reach_z_m = l.particle_reach_z_m;
   out.nodes.clear(), out.fx_N.clear(), out.fy_N.clear(), out.fz_N.clear();
   for (std::size_t j = 0; j < state.nodes.size(); ++j) {
     if (l.node_fx[j] == 0.0 && l.node_fy[j] == 0.0 && l.node_fz[j] == 0.0) continue;

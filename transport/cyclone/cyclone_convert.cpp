@@ -129,6 +129,7 @@ void view(const ContactLoads& s, cosim_wire_ContactLoads& w, Scratch&) {
   view_seq(s.tangential_z_N, w.tangential_z_N);
   view_seq(s.contact_area_m2, w.contact_area_m2);
   view_seq(s.pressure_Pa, w.pressure_Pa);
+  w.particle_reach_z_m = s.particle_reach_z_m;
 }
 void from_wire(const cosim_wire_ContactLoads& w, ContactLoads& s) {
   from_wire(w.header, s.header);
@@ -146,6 +147,7 @@ void from_wire(const cosim_wire_ContactLoads& w, ContactLoads& s) {
   from_seq(w.tangential_z_N, s.tangential_z_N);
   from_seq(w.contact_area_m2, s.contact_area_m2);
   from_seq(w.pressure_Pa, s.pressure_Pa);
+  s.particle_reach_z_m = w.particle_reach_z_m;
 }
 
 void view(const WheelState& s, cosim_wire_WheelState& w, Scratch&) {

@@ -103,6 +103,7 @@ void to_wire(const ContactLoads& s, cosim_wire::ContactLoads& w) {
   w.tangential_z_N() = s.tangential_z_N;
   w.contact_area_m2() = s.contact_area_m2;
   w.pressure_Pa() = s.pressure_Pa;
+  w.particle_reach_z_m(s.particle_reach_z_m);
 }
 void from_wire(cosim_wire::ContactLoads& w, ContactLoads& s) {
   from_wire(w.header(), s.header);
@@ -120,6 +121,7 @@ void from_wire(cosim_wire::ContactLoads& w, ContactLoads& s) {
   s.tangential_z_N = std::move(w.tangential_z_N());
   s.contact_area_m2 = std::move(w.contact_area_m2());
   s.pressure_Pa = std::move(w.pressure_Pa());
+  s.particle_reach_z_m = w.particle_reach_z_m();
 }
 
 void to_wire(const WheelState& s, cosim_wire::WheelState& w) {

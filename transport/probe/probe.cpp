@@ -111,6 +111,7 @@ ContactLoads make_loads(std::uint64_t run_id, std::uint64_t step, int nodes) {
   fill(l.tangential_z_N, n, 17, step);
   fill(l.contact_area_m2, n, 18, step);
   fill(l.pressure_Pa, n, 19, step);
+  l.particle_reach_z_m = value(23, step, 0);
   return l;
 }
 
@@ -156,6 +157,8 @@ void check_loads(const ContactLoads& got, std::uint64_t run_id, std::uint64_t st
   expect(got.tangential_z_N, w.tangential_z_N, "ContactLoads", "tangential_z_N");
   expect(got.contact_area_m2, w.contact_area_m2, "ContactLoads", "contact_area_m2");
   expect(got.pressure_Pa, w.pressure_Pa, "ContactLoads", "pressure_Pa");
+  if (got.particle_reach_z_m != w.particle_reach_z_m)
+    throw Error("ContactLoads.particle_reach_z_m differs from what was sent");
 }
 
 ProbeResult run_ping(const ProbeOptions& o) {

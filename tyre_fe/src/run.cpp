@@ -732,6 +732,9 @@ void TyreRun::finalize(cosim::RunRecord& record) {
   // What the terrain's loads gave the tyre over the run (the terrain books the same).
   const double* impulse = s_.terrain.impulse_Ns;
   record.results()["terrain_impulse_Ns"] = {impulse[0], impulse[1], impulse[2]};
+  // How high the sent surface reached: the scene's band, or above it where the
+  // terrain's particles (a splash) could reach higher.
+  record.results()["highest_contact_band_m"] = s_.terrain.highest_band_m;
   perf["coupled_wall_s"] = wall - coupled_from_wall_;
   perf["exchange_wait_s"] = exchange_s_;
   perf["compute_s"] = compute;

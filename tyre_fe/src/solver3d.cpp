@@ -288,7 +288,11 @@ void step_on_terrain(const Model3d& m, State3d& s, TerrainPort& port, const RimD
   };
   if (window_start) {  // exchange, out
     const auto t0 = std::chrono::steady_clock::now();
-    surface_near_terrain(terrain.surface, s, terrain.band_m, terrain.sent);
+    // A splash above the scene's band must meet the tread it flies at, not
+    // pass through a part of the surface the terrain was never sent.
+    const double band = std::max(terrain.band_m, terrain.loads.particle_reach_z_m);
+    terrain.highest_band_m = std::max(terrain.highest_band_m, band);
+    surface_near_terrain(terrain.surface, s, band, terrain.sent);
     port.send(terrain.sent, s.rim);
     commit_window_impulse(terrain);
     exchange_s += since(t0);

@@ -68,7 +68,8 @@ void save_terrain_coupling(const TerrainCoupling& t, double window_s, cosim::Che
   out.put("coupling.doubles",
           std::vector<double>{window_s, t.band_m, t.load_totals.force_N[0], t.load_totals.force_N[1],
                               t.load_totals.force_N[2], t.load_totals.contact_area_m2, t.impulse_Ns[0], t.impulse_Ns[1],
-                              t.impulse_Ns[2], t.window_impulse_Ns[0], t.window_impulse_Ns[1], t.window_impulse_Ns[2]});
+                              t.impulse_Ns[2], t.window_impulse_Ns[0], t.window_impulse_Ns[1], t.window_impulse_Ns[2],
+                              t.loads.particle_reach_z_m, t.highest_band_m});
 }
 
 double restore_terrain_coupling(const cosim::CheckpointReader& in, TerrainCoupling& t) {
@@ -79,11 +80,12 @@ double restore_terrain_coupling(const cosim::CheckpointReader& in, TerrainCoupli
   t.surface.node_mass_kg = in.get<double>("coupling.surface_node_mass_kg", n);
   const auto e = in.get<std::uint64_t>("coupling.exchange", 2);
   t.exchange = e[0], t.substeps = static_cast<int>(e[1]), t.substep = 0;
-  const auto d = in.get<double>("coupling.doubles", 12);
+  const auto d = in.get<double>("coupling.doubles", 14);
   t.band_m = d[1];
   t.load_totals.force_N = {d[2], d[3], d[4]};
   t.load_totals.contact_area_m2 = d[5];
   for (int c = 0; c < 3; ++c) t.impulse_Ns[c] = d[6 + c], t.window_impulse_Ns[c] = d[9 + c];
+  t.loads.particle_reach_z_m = d[12], t.highest_band_m = d[13];
   return d[0];
 }
 

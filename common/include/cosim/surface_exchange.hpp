@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,10 @@ struct SurfaceLoads {
   std::vector<double> tangential_x_N, tangential_y_N, tangential_z_N;
   std::vector<double> contact_area_m2;
   std::vector<double> pressure_Pa;
+  // The highest point the terrain's particles can touch before the next
+  // exchange; the owner sends every facet with a node below it at that
+  // exchange. Lowest double: nothing to touch.
+  double particle_reach_z_m = -std::numeric_limits<double>::max();
 };
 
 struct SurfaceLoadTotals {

@@ -5,6 +5,7 @@
 // ch. 10, penalty method), Coulomb friction per facet.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "cosim/surface_exchange.hpp"
@@ -98,7 +99,21 @@ struct SurfaceContactResult {
   // below the film they can resolve (SurfaceContactParameters::drain_film_m).
   // They got no contact force; the caller removes them.
   std::vector<std::uint32_t> drained;
+  // The highest point the particles can touch before the next exchange
+  // (particle_reach_z); the solver sets it after the call, the owner's next
+  // surface reaches down to it.
+  double particle_reach_z_m = -std::numeric_limits<double>::max();
 };
+
+// The highest point any of the n particles can touch at the next exchange, a
+// window later: each one's height advanced over the window as the explicit
+// update moves it, with the velocity and the acceleration it has now (the
+// contact's force included), z + max(0, (vz + az window) window), plus two
+// radii: one the contact's reach, the other for what the particle's
+// neighbours change in its acceleration within the window. A surface that
+// reaches down to it misses no particle; lowest double without particles.
+double particle_reach_z(std::size_t n, const double* z, const double* vz, const double* az, double window_s,
+                        double particle_radius_m);
 
 // The sparse loads that go back to the surface's owner: the nodes and facets of
 // `state` that carry any, in the owner's numbering, with the state's exchange and time.

@@ -69,6 +69,7 @@ struct ContactLoads {
   std::vector<double> tangential_x_N, tangential_y_N, tangential_z_N;
   std::vector<double> contact_area_m2;
   std::vector<double> pressure_Pa;
+  double particle_reach_z_m = 0.0;  // highest point the particles can touch before the next exchange
 };
 
 // Per step: the rigid rim.

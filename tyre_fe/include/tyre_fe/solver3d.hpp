@@ -69,7 +69,10 @@ struct TerrainCoupling {
   std::uint64_t exchange = 0;   // windows exchanged
   int substeps = 1;             // tyre steps per coupling window
   int substep = 0;              // position in the current window (0: its start)
-  double band_m = 0.1;          // facets with a node below this height are sent
+  // Facets with a node below this height (the scene's contact band) or below
+  // the particles' reach that the terrain reported with its last loads are sent.
+  double band_m = 0.1;
+  double highest_band_m = 0.0;  // the highest the sent band reached over the run
   cosim::SurfaceState sent;     // the surface sent at the current window's start
   cosim::SurfaceLoads loads;    // of the current window
   cosim::SurfaceLoadTotals load_totals;
