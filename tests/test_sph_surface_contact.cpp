@@ -403,6 +403,10 @@ TEST(SurfaceContact, MaxPenetrationIsTheDeepestOfSeveralParticles) {
   SurfaceContactResult l;
   snow_sph::surface_contact(s, params(), 3, x, y, z, v, v, v, m, kDt, ax, ay, az, l);
   EXPECT_NEAR(l.max_penetration_m, kRadius - 0.0025, kOverlapRounding);
+  // ... and where it is: the middle particle, on the one facet.
+  EXPECT_EQ(l.deepest_x_m, 0.0);
+  EXPECT_EQ(l.deepest_z_m, -0.0025);
+  EXPECT_EQ(l.deepest_facet, 0);
 }
 
 // A patch of a cylinder (radius 0.35 m, axis y) seen from below, moving, and

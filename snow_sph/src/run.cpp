@@ -172,6 +172,8 @@ class SphRun final : public cosim::Participant {
   // penetration of a particle into the surface over the exchanges so far.
   RutGrid rut_grid_;
   double particle_radius_m_ = 0.0, max_penetration_m_ = 0.0;
+  // Where and when the deepest was: time, the particle's x, y, z, the facet.
+  std::vector<double> deepest_ = std::vector<double>(5, -1.0);
 };
 
 double SphRun::initialize(cosim::RunRecord& record) {
@@ -264,7 +266,9 @@ double SphRun::initialize(cosim::RunRecord& record) {
                                   {"damping_ratio", contact.damping_ratio}};
     contact_csv_ = &record.series("terrain_contact.csv",
                                   {"time_s", "force_on_surface_x_N", "force_on_surface_y_N", "force_on_surface_z_N",
-                                   "contact_area_m2", "particles_in_contact", "drained_water_particles"});
+                                   "contact_area_m2", "particles_in_contact", "drained_water_particles",
+                                   "max_penetration_m", "deepest_particle_x_m", "deepest_particle_z_m", "deepest_facet",
+                                   "particle_reach_z_m"});
     // Exchange 0 with the particles at t_0; a restart's state and held loads
     // come from its checkpoint instead.
     if (record.resume_step() == 0) stopped_ = !exchange_surface(0);
@@ -297,7 +301,11 @@ bool SphRun::exchange_surface(std::uint64_t exchange) {
   if (state) assemble_contact_surface(port_->topology(), *state, surface_, compact_scratch_);
   solver_->contact_surface(state ? &surface_ : nullptr, exchange);
   if (!state) return false;
-  max_penetration_m_ = std::max(max_penetration_m_, solver_->surface_loads().max_penetration_m);
+  const SurfaceContactResult& l = solver_->surface_loads();
+  if (l.max_penetration_m > max_penetration_m_) {
+    max_penetration_m_ = l.max_penetration_m;
+    deepest_ = {solver_->time(), l.deepest_x_m, l.deepest_y_m, l.deepest_z_m, double(l.deepest_facet)};
+  }
   sparse_surface_loads(*state, solver_->surface_loads(), loads_out_);
   const auto t1 = std::chrono::steady_clock::now();
   port_->send_loads(loads_out_);
@@ -347,16 +355,18 @@ bool SphRun::advance() {
 void SphRun::save(cosim::CheckpointWriter& out) const {
   solver_->save(out);
   out.put("run.doubles", std::vector<double>{dt_min_, dt_max_, dt_sum_, probe_sum_, probe_time_, last_dt_, next_csv_,
-                                             next_vtk_, max_penetration_m_});
+                                             next_vtk_, max_penetration_m_, deepest_[0], deepest_[1], deepest_[2],
+                                             deepest_[3], deepest_[4]});
   out.put("run.counters", std::vector<std::uint64_t>{exchange_, windows_, clamped_, stopped_ ? 1u : 0u});
   out.put("run.vtk_frame_times", vtk_ ? vtk_->frame_times() : std::vector<double>{});
 }
 
 void SphRun::restore(const cosim::CheckpointReader& in) {
   solver_->restore(in);
-  const auto d = in.get<double>("run.doubles", 9);
+  const auto d = in.get<double>("run.doubles", 14);
   dt_min_ = d[0], dt_max_ = d[1], dt_sum_ = d[2], probe_sum_ = d[3], probe_time_ = d[4], last_dt_ = d[5];
   next_csv_ = d[6], next_vtk_ = d[7], max_penetration_m_ = d[8];
+  deepest_.assign(d.begin() + 9, d.end());
   const auto c = in.get<std::uint64_t>("run.counters", 4);
   exchange_ = c[0], windows_ = c[1], clamped_ = c[2], stopped_ = c[3] != 0;
   const auto frames = in.get<double>("run.vtk_frame_times");
@@ -440,7 +450,8 @@ void SphRun::record_rows(bool force) {
     for (double a : l.facet_contact_area_m2) area += a;
     for (auto c : l.particles_in_contact) in_contact += c;
     contact_csv_->row({t, l.total_fx_N, l.total_fy_N, l.total_fz_N, area, in_contact,
-                       static_cast<double>(solver_->drained_particles())});
+                       static_cast<double>(solver_->drained_particles()), l.max_penetration_m, l.deepest_x_m,
+                       l.deepest_z_m, static_cast<double>(l.deepest_facet), l.particle_reach_z_m});
   }
 }
 
@@ -494,6 +505,10 @@ void SphRun::finalize(cosim::RunRecord& record) {
     write_rut_csv(record.path("rut_surface.csv"), rut_grid_, rut);
     results["rut_depth_m"] = rut.rut_depth_m;
     results["max_penetration_m"] = max_penetration_m_;
+    if (deepest_[4] >= 0)  // where a particle went deepest (terrain_contact.csv: at each row's exchange)
+      results["deepest_contact"] = {{"time_s", deepest_[0]}, {"particle_x_m", deepest_[1]},
+                                    {"particle_y_m", deepest_[2]}, {"particle_z_m", deepest_[3]},
+                                    {"facet", static_cast<std::int64_t>(deepest_[4])}};
     results["particle_radius_m"] = particle_radius_m_;
     // Water squeezed into films thinner than half a particle (docs/water.md).
     double water_kg = 0.0;

@@ -554,7 +554,11 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       loads.damping_dissipation_J += ct.damping_J;
       loads.elastic_energy_J += ct.elastic_J;
       // The deepest contact as a max in this serial loop: the same for any thread count.
-      loads.max_penetration_m = std::max(loads.max_penetration_m, ct.penetration_m);
+      if (ct.penetration_m > loads.max_penetration_m) {
+        loads.max_penetration_m = ct.penetration_m;
+        loads.deepest_x_m = x[i], loads.deepest_y_m = y[i], loads.deepest_z_m = z[i];
+        loads.deepest_facet = s.facet_id.empty() ? ct.facet : s.facet_id[ct.facet];
+      }
     }
   }
   // The sticks of this call become the history of the next, grouped by particle id.

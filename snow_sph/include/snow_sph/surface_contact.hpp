@@ -95,6 +95,9 @@ struct SurfaceContactResult {
   // corner point), before the force's cap at one radius; 0 without contact.
   // Above the radius a particle's centre has crossed the surface.
   double max_penetration_m = 0;
+  // Where it is: the particle's centre and the facet (the owner's number; -1 without contact).
+  double deepest_x_m = 0, deepest_y_m = 0, deepest_z_m = 0;
+  std::int64_t deepest_facet = -1;
   // Particles drained this call (indices, ascending): pinched against a wall
   // below the film they can resolve (SurfaceContactParameters::drain_film_m).
   // They got no contact force; the caller removes them.
