@@ -372,6 +372,7 @@ TEST(SurfaceContact, MaxPenetrationIsTheOverlapOfTheParticlesSphereWithTheFacet)
   add_flat_quad(s, -0.01, -0.01, 0.01, 0.01, 0.0, 0.3);
   Particle p{0.002, -0.003, -(kRadius - 0.0013)};  // centre 3.7 mm below the facet, radius 5 mm
   EXPECT_NEAR(contact(s, p).max_penetration_m, 0.0013, kOverlapRounding);
+  EXPECT_EQ(contact(s, p).particles_behind_surface, 0u);  // in contact, its centre in front
   Particle apart{0.0, 0.0, -1.001 * kRadius};
   EXPECT_EQ(contact(s, apart).max_penetration_m, 0.0);
 }
@@ -385,6 +386,7 @@ TEST(SurfaceContact, MaxPenetrationBeyondTheRadiusWhenTheCentreCrossedTheFacet) 
   const SurfaceContactResult l = contact(s, p);
   EXPECT_NEAR(l.max_penetration_m, 1.3 * kRadius, kOverlapRounding);
   EXPECT_NEAR(p.az * kMass, -kStiffness * kRadius, 1e-9);
+  EXPECT_EQ(l.particles_behind_surface, 1u);  // its centre is behind the facet
 }
 
 TEST(SurfaceContact, MaxPenetrationAtAnEdgeIsTheRadiusLessTheDistanceToTheEdge) {

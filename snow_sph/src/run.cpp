@@ -268,7 +268,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
                                   {"time_s", "force_on_surface_x_N", "force_on_surface_y_N", "force_on_surface_z_N",
                                    "contact_area_m2", "particles_in_contact", "drained_water_particles",
                                    "max_penetration_m", "deepest_particle_x_m", "deepest_particle_z_m", "deepest_facet",
-                                   "particle_reach_z_m"});
+                                   "particles_behind_surface", "particle_reach_z_m"});
     // Exchange 0 with the particles at t_0; a restart's state and held loads
     // come from its checkpoint instead.
     if (record.resume_step() == 0) stopped_ = !exchange_surface(0);
@@ -451,7 +451,8 @@ void SphRun::record_rows(bool force) {
     for (auto c : l.particles_in_contact) in_contact += c;
     contact_csv_->row({t, l.total_fx_N, l.total_fy_N, l.total_fz_N, area, in_contact,
                        static_cast<double>(solver_->drained_particles()), l.max_penetration_m, l.deepest_x_m,
-                       l.deepest_z_m, static_cast<double>(l.deepest_facet), l.particle_reach_z_m});
+                       l.deepest_z_m, static_cast<double>(l.deepest_facet),
+                       static_cast<double>(l.particles_behind_surface), l.particle_reach_z_m});
   }
 }
 

@@ -533,6 +533,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
   // Serial sums in particle order: the reaction on the facet nodes and facets.
   for (std::size_t i = 0; i < n_particles; ++i) {
     if (contacts[i].drained) loads.drained.push_back(static_cast<std::uint32_t>(i));
+    bool behind = false;
     for (int k2 = 0; k2 < contacts[i].count; ++k2) {
       const Contact& ct = contacts[i].c[k2];
       const std::uint32_t* q = &s.facet_nodes[4 * ct.facet];
@@ -554,12 +555,14 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       loads.damping_dissipation_J += ct.damping_J;
       loads.elastic_energy_J += ct.elastic_J;
       // The deepest contact as a max in this serial loop: the same for any thread count.
+      behind = behind || ct.penetration_m > params.particle_radius_m;
       if (ct.penetration_m > loads.max_penetration_m) {
         loads.max_penetration_m = ct.penetration_m;
         loads.deepest_x_m = x[i], loads.deepest_y_m = y[i], loads.deepest_z_m = z[i];
         loads.deepest_facet = s.facet_id.empty() ? ct.facet : s.facet_id[ct.facet];
       }
     }
+    if (behind) ++loads.particles_behind_surface;
   }
   // The sticks of this call become the history of the next, grouped by particle id.
   if (history) {

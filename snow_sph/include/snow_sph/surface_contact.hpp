@@ -98,6 +98,9 @@ struct SurfaceContactResult {
   // Where it is: the particle's centre and the facet (the owner's number; -1 without contact).
   double deepest_x_m = 0, deepest_y_m = 0, deepest_z_m = 0;
   std::int64_t deepest_facet = -1;
+  // Particles whose centre is behind a facet they touch (penetration above the
+  // radius): water or snow inside the body, which should not happen.
+  std::uint32_t particles_behind_surface = 0;
   // Particles drained this call (indices, ascending): pinched against a wall
   // below the film they can resolve (SurfaceContactParameters::drain_film_m).
   // They got no contact force; the caller removes them.
