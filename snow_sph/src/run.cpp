@@ -306,7 +306,7 @@ bool SphRun::exchange_surface(std::uint64_t exchange) {
     max_penetration_m_ = l.max_penetration_m;
     deepest_ = {solver_->time(), l.deepest_x_m, l.deepest_y_m, l.deepest_z_m, double(l.deepest_facet)};
   }
-  sparse_surface_loads(*state, solver_->surface_loads(), loads_out_);
+  sparse_surface_loads(*state, l, loads_out_);
   const auto t1 = std::chrono::steady_clock::now();
   port_->send_loads(loads_out_);
   exchange_wait_s_ += seconds_since(t1);
