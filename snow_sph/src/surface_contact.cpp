@@ -559,7 +559,7 @@ void surface_contact(const ContactSurface& s, const SurfaceContactParameters& pa
       if (ct.penetration_m > loads.max_penetration_m) {
         loads.max_penetration_m = ct.penetration_m;
         loads.deepest_x_m = x[i], loads.deepest_y_m = y[i], loads.deepest_z_m = z[i];
-        loads.deepest_facet = s.facet_id.empty() ? ct.facet : s.facet_id[ct.facet];
+        loads.deepest_facet = ct.facet_id;
       }
     }
     if (behind) ++loads.particles_behind_surface;
