@@ -237,3 +237,26 @@ TEST(CouplerForces, RejectsInconsistentInput) {
   bad.pressure_z_N[0] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(coupler::decompose_forces(bad, wheel(0.0, 0.4)), cosim::Error);
 }
+
+TEST(CouplerForces, LiftSplitsIntoTreadTopsAndPatternRecesses) {
+  // Water under a grooved tread: where does it lift the tyre? Six facets, one of
+  // each tag that can touch the terrain, each with a distinct power-of-two lift so
+  // that a tag counted in the wrong part, twice or not at all gives another sum:
+  //   tread tops     : 1 + 2           = 3 N
+  //   recesses       : groove wall 4 + groove floor 8 + sipe wall 16 = 28 N
+  //   neither (rest) : shoulder 32     (and a sidewall pushed down, -64)
+  //   F4 = 3 + 28 + 32 - 64 = -1 N.
+  // Sums of integers are exact in double precision, hence the tolerance 0.
+  coupler::FacetLoads l;
+  add(l, FacetTag::tread_top, {0, 0, 1}, {}, {0, 0, -0.38}, 1e-3);
+  add(l, FacetTag::tread_top, {0, 0, 2}, {}, {0.01, 0, -0.38}, 1e-3);
+  add(l, FacetTag::groove_wall, {-3, 0, 4}, {}, {0.02, 0, -0.37}, 1e-4);
+  add(l, FacetTag::groove_bottom, {0, 0, 8}, {}, {0.03, 0, -0.37}, 1e-4);
+  add(l, FacetTag::sipe_wall, {1, 0, 16}, {}, {0.04, 0, -0.37}, 1e-4);
+  add(l, FacetTag::shoulder, {0, 5, 32}, {}, {0.0, 0.1, -0.36}, 1e-4);
+  add(l, FacetTag::sidewall, {0, 5, -64}, {}, {0.0, 0.12, -0.30}, 1e-4);
+  const auto d = coupler::decompose_forces(l, wheel(0.0, 0.4));
+  EXPECT_EQ(d.vertical_pressure_force_N, -1.0);
+  EXPECT_EQ(d.vertical_pressure_force_tread_top_N, 3.0);
+  EXPECT_EQ(d.vertical_pressure_force_groove_N, 28.0);
+}

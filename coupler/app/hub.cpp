@@ -223,7 +223,8 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
                          "vertical_pressure_force_N", "rolling_resistance_moment_Nm", "rolling_resistance_force_N",
                          "drawbar_pull_N", "net_longitudinal_pressure_force_N", "traction_minus_rrf_N", "sinkage_m",
                          "contact_area_m2", "rim_x_m", "rim_z_m", "spin_rate_rad_per_s", "applied_torque_Nm",
-                         "rm2_Nm", "contact_force_x_N", "contact_force_z_N", "rim_longitudinal_force_N"});
+                         "rm2_Nm", "contact_force_x_N", "contact_force_z_N", "rim_longitudinal_force_N",
+                         "vertical_pressure_force_tread_top_N", "vertical_pressure_force_groove_N"});
   // The pace of the coupled run: wall time against simulated time, every
   // kPaceEvery windows (bench/coupled_bench.sh measures the speed in contact from it).
   pace_csv_ = &record.series("pace.csv", {"time_s", "windows", "wall_time_s"});
@@ -290,7 +291,8 @@ bool CouplerRun::advance() {
              d.vertical_pressure_force_N, d.rolling_resistance_moment_Nm, d.rolling_resistance_force_N,
              d.drawbar_pull_N, d.net_longitudinal_pressure_force_N, d.traction_minus_rrf_N, d.sinkage_m,
              d.contact_area_m2, wheel_.rim_x_m, wheel_.rim_z_m, wheel_.spin_rate_radps, wheel_.applied_torque_Nm,
-             wheel_.reaction_moment_y_Nm, fx, fz, wheel_.rim_longitudinal_force_N});
+             wheel_.reaction_moment_y_Nm, fx, fz, wheel_.rim_longitudinal_force_N,
+             d.vertical_pressure_force_tread_top_N, d.vertical_pressure_force_groove_N});
   rows_.push_back({sim_time_, d, wheel_.rim_longitudinal_force_N, fx});
   if (averaging_window_s_ > 0)  // the means read the rows of t >= the last t - window (finalize)
     while (rows_.front().t < rows_.back().t - averaging_window_s_) rows_.pop_front();

@@ -28,6 +28,18 @@ TagSet default_groove_tags() {
   return g;
 }
 
+TagSet pattern_recess_tags() {
+  TagSet g = default_groove_tags();
+  g[index(FacetTag::groove_bottom)] = true;
+  return g;
+}
+
+TagSet tags_of(FacetTag tag) {
+  TagSet g{};
+  g[index(tag)] = true;
+  return g;
+}
+
 void validate(const FacetLoads& l) {
   const std::size_t n = l.size();
   const std::vector<double>* fields[] = {&l.pressure_x_N, &l.pressure_y_N, &l.pressure_z_N, &l.friction_x_N,
@@ -63,6 +75,13 @@ PressureSplit split_longitudinal_pressure(const FacetLoads& loads, const TagSet&
 }
 
 double vertical_pressure_force(const FacetLoads& loads) { return sum(loads.pressure_z_N); }
+
+double vertical_pressure_force(const FacetLoads& loads, const TagSet& tags) {
+  double f = 0.0;
+  for (std::size_t i = 0; i < loads.size(); ++i)
+    if (tags[index(loads.tag[i])]) f += loads.pressure_z_N[i];
+  return f;
+}
 
 double decomposition_residual_N(const FacetLoads& loads, double total_x_N, double total_y_N, double total_z_N) {
   const double dx = sum(loads.pressure_x_N) + sum(loads.friction_x_N) - total_x_N;
@@ -102,6 +121,8 @@ ForceDecomposition decompose_forces(const FacetLoads& loads, const WheelInput& w
   d.motion_resistance_N = split.motion_resistance_N;
   d.groove_force_N = split.groove_force_N;
   d.vertical_pressure_force_N = vertical_pressure_force(loads);
+  d.vertical_pressure_force_tread_top_N = vertical_pressure_force(loads, tags_of(FacetTag::tread_top));
+  d.vertical_pressure_force_groove_N = vertical_pressure_force(loads, pattern_recess_tags());
   const double pressure_moment = rolling_resistance_moment(loads, wheel.rim_x_m);
   d.pressure_centre_offset_m = d.vertical_pressure_force_N != 0.0 ? pressure_moment / d.vertical_pressure_force_N : 0.0;
   d.rolling_resistance_moment_Nm =

@@ -48,6 +48,11 @@ enum class SinkageMeasure {
 using TagSet = std::array<bool, cosim::kFacetTagCount>;  // indexed by FacetTag
 // groove_wall and sipe_wall: the walls that hold the snow in the pattern (2.1.2).
 TagSet default_groove_tags();
+// The pattern's recesses: groove walls, groove floors and sipe walls. Where the
+// terrain lifts the tyre (water under a grooved tread, docs/water.md) is read
+// from F4 on these against F4 on the tread tops.
+TagSet pattern_recess_tags();
+TagSet tags_of(FacetTag tag);
 
 // Choices the thesis leaves open (docs/force_decomposition.md, section "Choices").
 struct DecompositionOptions {
@@ -66,6 +71,8 @@ struct ForceDecomposition {
   double motion_resistance_N = 0.0;                // F1
   double groove_force_N = 0.0;                     // F2
   double vertical_pressure_force_N = 0.0;          // F4
+  double vertical_pressure_force_tread_top_N = 0.0;  // the part of F4 on the tread tops
+  double vertical_pressure_force_groove_N = 0.0;     // the part on groove walls and floors and sipe walls
   double rolling_resistance_moment_Nm = 0.0;       // RRM
   double pressure_centre_offset_m = 0.0;           // delta x: F4 centre ahead of the rim (0 if F4 = 0)
   double rolling_resistance_force_N = 0.0;         // F5
@@ -89,6 +96,8 @@ struct PressureSplit {
 PressureSplit split_longitudinal_pressure(const FacetLoads& loads, const TagSet& groove_tags);
 // F4 = sum_i P_z,i: vertical force due to contact pressure, Figure 2.1.
 double vertical_pressure_force(const FacetLoads& loads);
+// The part of F4 on the facets whose tag is in `tags`.
+double vertical_pressure_force(const FacetLoads& loads, const TagSet& tags);
 // The parts add up (thesis eq. 2.2: each contact force is its pressure part plus
 // its friction part): |sum over the facets of (pressure + friction) - total| [N],
 // total the force the terrain puts on the tyre's nodes.
