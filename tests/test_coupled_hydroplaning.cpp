@@ -91,4 +91,50 @@ TEST(CoupledHydroplaning, TheRoadsShareFallsAsTheSpeedRisesUntilTheTyreIsAfloat)
   EXPECT_LT(c.road_share.back(), 0.10);
 }
 
+// The last row of a CSV series as numbers.
+std::vector<double> last_row(const std::string& file) {
+  std::ifstream in(file);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  std::vector<double> v;
+  std::stringstream row(last);
+  std::string cell;
+  while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
+  return v;
+}
+
+// The same coarse case on 0.6 m of water: the tread reaches the water's end at
+// 18.4 m/s (measured), before the tyre has been afloat for the 30 ms that would
+// end the stage. The reading stops there, and
+// tyre.stages.end_rolling_past_the_water ends the rolling stage one filter
+// width (5 ms of road) past it instead of rolling on bare road to the ramp's
+// end (0.14 s, the rim 1.3 m further on).
+TEST(CoupledHydroplaning, TheRollingStageEndsOnceTheTreadIsPastTheWater) {
+  const std::string dir = test_support::scratch("coupled_hydroplaning_end");
+  auto [code, out] = shell(
+      bin() + "/cosim run " + test_support::scene_path("tyre_hydroplaning") + " --out " + dir +
+      " --dds cyclone --domain 22 --no-vtk --quiet --set sph.particle_spacing_m=0.01"
+      " --set sph.container.max.x=0.6 --set sph.blocks[0].region.max.x=0.6"
+      " --set tyre.rim.speed_ramp_time_s=0.1 --set tyre.stages.rolling_s=0.1 --set tyre.stages.loading_s=0.04"
+      " --set time.max_steps=60000");
+  ASSERT_EQ(code, 0) << out;
+  std::ifstream summary_file(dir + "/tyre/summary.json");
+  const nlohmann::json tyre = nlohmann::json::parse(summary_file);
+  const auto& h = tyre["results"]["hydroplaning"];
+  ASSERT_TRUE(h.is_object()) << tyre.dump(1);
+  EXPECT_FALSE(h["ended_afloat"].get<bool>());
+  ASSERT_TRUE(h["reached_the_end_of_the_water_at_speed_m_per_s"].is_number()) << h.dump(1);
+  // tyre.csv: time_s, stage, rim_x_m, rim_z_m, rim_angle_rad, rim_vx_m_per_s, ...
+  const std::vector<double> last = last_row(dir + "/tyre/tyre.csv");
+  ASSERT_GT(last.size(), 5u);
+  const double tread_front = last[2] + h["tread_lead_at_surface_m"].get<double>();
+  const double past = tread_front - h["water_end_x_m"].get<double>(), speed = last[5];
+  // Past the end by the filter's 5 ms of road, give or take the last rows: the
+  // CSV's 0.5 ms interval and one 14 us coupling window, so within 1 ms of road.
+  EXPECT_GT(past, speed * 0.004) << "at " << speed << " m/s";
+  EXPECT_LT(past, speed * 0.006) << "at " << speed << " m/s";
+  EXPECT_LT(last[0], 0.13);  // well before the rolling stage's planned end
+}
+
 }  // namespace

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/error.hpp"
+#include "cosim/outputs.hpp"
 #include "cosim/participant.hpp"
 #include "cosim/scene_io.hpp"
 #include "test_paths.hpp"
@@ -97,4 +98,23 @@ TEST(RunSkeleton, FailureKeepsTheRowsTellsThePeersAndSaysWhy) {
   EXPECT_EQ(on_disk["error"], "broke at step 3");
   EXPECT_EQ(on_disk["results"]["last_step"], 3);  // what the run reached
   EXPECT_EQ(lines(dir + "/out/count.csv").size(), 3u);  // header + steps 1 and 2
+}
+
+// A restarted run appends to its series: a build that writes other columns
+// (a newer coupler's forces.csv) would put rows of another layout under the old
+// header. It is refused with the file, the line and both headers; the same
+// columns continue.
+TEST(RunSkeleton, ARestartWithOtherColumnsIsRefusedNamingTheFile) {
+  const std::string path = test_support::scratch("csv_resume") + "/forces.csv";
+  { cosim::CsvWriter first(path, {"time_s", "force_N"}, false); first.row({0.0, 1.0}); }
+  EXPECT_NO_THROW(cosim::CsvWriter(path, {"time_s", "force_N"}, true));
+  try {
+    cosim::CsvWriter other(path, {"time_s", "force_N", "lift_N"}, true);
+    FAIL() << "a restart with other columns was accepted";
+  } catch (const cosim::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path + ", line 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("'time_s,force_N'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'time_s,force_N,lift_N'"), std::string::npos) << what;
+  }
 }

@@ -92,6 +92,30 @@ TEST(TreadBlockMesh, ASliceHasNoFacetsOnItsSymmetryPlanes) {
 
 // The path's speed is v times the smoothstep ramp in, v, then the ramp out: its
 // difference quotient must match that speed, independently of the integral.
+// The road's contact area of a node is its share of the footprint: the ribs'
+// faces (at z = face_z) together are the land L W - 4 w W, the whole bottom with
+// the groove floors L W. Shares of all outer facets (the tributary area this
+// replaced) gave the face's nodes half the lowest row of every groove wall, end
+// and side besides: 1.876e-3 m^2, 27 % more than the land.
+// Tolerance: a sum of ~1000 quarter areas of 2 mm facets, round-off ~1e-16 m^2 each.
+TEST(TreadBlockMesh, TheRoadAreaOfTheFaceIsItsLandNotItsWalls) {
+  const TreadBlockGeometry g = grooved(false);
+  const Mesh3D mesh = make_tread_block_mesh(g, 0.0);
+  TyreMaterials materials;
+  SolidMaterial& solid = materials.solid[static_cast<int>(Region::tread)];
+  solid.kind = SolidMaterial::Kind::elastic;
+  solid.elastic = {4.588e6, 0.0, 1178.0};
+  const Model3d model = build_model3d(mesh, materials, CrossSection{}, Model3dOptions{});
+  double face = 0.0, all = 0.0;
+  for (std::size_t c = 0; c < model.contact_nodes.size(); ++c) {
+    all += model.contact_node_area_m2[c];
+    if (std::abs(model.mesh.nodes[model.contact_nodes[c]].z()) < 1e-12) face += model.contact_node_area_m2[c];
+  }
+  const double land = g.length_x_m * g.width_y_m - 4 * g.groove_width_m * g.width_y_m;
+  EXPECT_NEAR(face, land, 1e-12);
+  EXPECT_NEAR(all, g.length_x_m * g.width_y_m, 1e-12);
+}
+
 TEST(TreadBlockPushPath, SpeedIsTheSmoothstepRampAndTheDepthIsMet) {
   const PushPath p{0.009, 0.5, 0.004};
   const double end = p.end_s(), h = 1e-7;

@@ -36,12 +36,23 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
     : path_(path), columns_(columns.size()), last_flush_(std::chrono::steady_clock::now()) {
   if (resume && !std::filesystem::exists(path))
     throw Error(path + ": the series of the run being restarted is missing");
+  std::string header;
+  for (std::size_t i = 0; i < columns.size(); ++i) header += (i ? "," : "") + columns[i];
+  if (resume) {
+    // Rows of another layout appended under the old header would corrupt the
+    // series: a build that writes other columns cannot continue this run.
+    std::ifstream in(path);
+    std::string first;
+    std::getline(in, first);
+    if (first != header)
+      throw Error(path + ", line 1: the run being restarted wrote the columns '" + first + "'; this build writes '" +
+                  header + "': restart with the build that began the run, or start afresh");
+  }
   out_.open(path, resume ? std::ios::app : std::ios::trunc);
   if (!out_) throw Error(path + ": cannot write: " + std::strerror(errno));
   muted_ = resume;
   if (resume) return;
-  for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
-  out_ << "\n";
+  out_ << header << "\n";
   out_.flush();
 }
 

@@ -17,6 +17,16 @@ bool touches_ground(SurfaceTag t) {
   return t != SurfaceTag::inner_liner && t != SurfaceTag::rim_contact;
 }
 
+// The direction in which a facet at c meets the road: a revolved tyre's facet
+// radially out from the spin axis (y, through the origin), a tread block's
+// downwards (its nodes come from no cross-section: node_source -1).
+Eigen::Vector3d ground_facing(const Mesh3D& mesh, const Eigen::Vector3d& c) {
+  const bool revolved = !mesh.node_source.empty() && mesh.node_source.front() >= 0;
+  if (!revolved) return {0.0, 0.0, -1.0};
+  const Eigen::Vector3d radial(c.x(), 0.0, c.z());
+  return radial.norm() > 0.0 ? Eigen::Vector3d(radial.normalized()) : Eigen::Vector3d(0.0, 0.0, -1.0);
+}
+
 }  // namespace
 
 Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSection& section,
@@ -135,7 +145,12 @@ Model3d build_model3d(Mesh3D mesh, const TyreMaterials& materials, const CrossSe
     if (!touches_ground(facet.tag)) continue;
     const auto& x = mesh.nodes;
     const auto& q = facet.nodes;
-    const double a = cosim::quad_area_vector(x[q[0]], x[q[1]], x[q[2]], x[q[3]]).norm();
+    // A node's footprint is its share of its facets projected on the road (the
+    // footprint of thesis Figure 4.3): a groove or sipe wall, normal to the road,
+    // adds nothing, so a block tread's area is its land, not its land and walls.
+    const Eigen::Vector3d centre = 0.25 * (x[q[0]] + x[q[1]] + x[q[2]] + x[q[3]]);
+    const Eigen::Vector3d facet_area = cosim::quad_area_vector(x[q[0]], x[q[1]], x[q[2]], x[q[3]]);
+    const double a = std::abs(facet_area.dot(ground_facing(mesh, centre)));
     for (int n : facet.nodes) area[n] += a / 4.0, outer[n] = 1;
   }
   m.is_rim_node.assign(nn, 0);

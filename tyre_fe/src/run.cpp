@@ -124,6 +124,15 @@ class TyreRun final : public cosim::Participant {
   void rejoin_terrain(const cosim::CheckpointReader& in, double own_dt_s);
   // The road has carried less than the criterion's share (trailing mean) for kAfloatHold_s.
   bool afloat_now();
+  // Where the water ends along x (infinite: no terrain blocks) and how far
+  // ahead of the rim the tread meets the water surface.
+  struct WaterEnd {
+    double x_m = 0.0, tread_lead_m = 0.0;
+  };
+  WaterEnd water_end() const;
+  // The tread has passed the water's end by one filter width of road: the
+  // reading (which stops at the end) has all its samples, centred means included.
+  bool past_the_water() const;
   void join_terrain();
   // Forces of the ground on the tyre: the rigid road, or a terrain solver's loads.
   double ground_fx() const { return s_.road.force_x_N + s_.terrain.load_totals.force_N[0]; }
@@ -539,6 +548,7 @@ bool TyreRun::each_step() {
           afloat_ = true;
           return true;
         }
+        if (t_.stages().end_rolling_past_the_water() && past_the_water()) return true;
       }
       if (s_.time_s < t_window_) return false;
       if (!in_window_) x_w_ = s_.rim.x, a_w_ = s_.rim.angle, in_window_ = true;
@@ -652,7 +662,7 @@ bool TyreRun::afloat_now() {
   return s_.time_s - below_since_ >= kAfloatHold_s;
 }
 
-void TyreRun::report_hydroplaning(nlohmann::json& results) {
+TyreRun::WaterEnd TyreRun::water_end() const {
   // The reading ends where the tread reaches the downstream end of the water
   // (the scene's terrain blocks): beyond it the tyre lands on the bare road.
   constexpr double kNone = std::numeric_limits<double>::infinity();
@@ -664,8 +674,18 @@ void TyreRun::report_hydroplaning(nlohmann::json& results) {
       block_end = std::max(block_end, b.region().max().x()), surface_z = std::max(surface_z, b.region().max().z());
     water_end_x = std::min(scene_.sph().container().max().x(), block_end);
   }
-  const double rim_height = results.value("loaded_radius_m", radius0_) + s_.road.height_m - surface_z;
-  const double lead = tread_lead_at_surface_m(radius0_, rim_height);
+  const double rim_height = record_->results().value("loaded_radius_m", radius0_) + s_.road.height_m - surface_z;
+  return {water_end_x, tread_lead_at_surface_m(radius0_, rim_height)};
+}
+
+bool TyreRun::past_the_water() const {
+  const WaterEnd end = water_end();
+  return s_.rim.x + end.tread_lead_m >= end.x_m + std::fabs(s_.rim.vx) * kHydroplaningFilter_s;
+}
+
+void TyreRun::report_hydroplaning(nlohmann::json& results) {
+  const WaterEnd end = water_end();
+  const double water_end_x = end.x_m, lead = end.tread_lead_m;
   const std::size_t n = samples_over_water(ramp_t_, ramp_v_, s_.rim.x, lead, water_end_x);
   if (n < 2) return;
   auto first_n = [n](const std::vector<double>& v) { return std::vector<double>(v.begin(), v.begin() + long(n)); };

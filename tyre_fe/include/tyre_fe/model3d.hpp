@@ -41,7 +41,9 @@ struct Model3d {
   std::vector<int> node_hex_begin, node_hex_entries;
   // Facets loaded by the inflation pressure (indices into mesh.facets).
   std::vector<int> pressure_facets;
-  // Nodes that may touch the road (outer surface), their reference tributary area.
+  // Nodes that may touch the road (outer surface), their reference tributary area
+  // projected on the road (a tyre's facets radially, a block's downwards): the
+  // footprint, in which groove and sipe walls count nothing.
   std::vector<int> contact_nodes;
   std::vector<double> contact_node_area_m2;
   std::vector<char> is_rim_node;
