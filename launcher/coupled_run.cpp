@@ -127,13 +127,7 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   // checkpointed (docs/reliability.md, "Coupled runs").
   std::uint64_t from_exchange = 0;
   std::string listing;
-  // The earlier attempts' wall time (their summary's, itself a sum over its own
-  // restarts): a restarted run's wall_time_s is what the whole run cost.
-  double wall_before_restart_s = 0.0;
   if (request.restart) {
-    const nlohmann::json earlier = read_json_or_null(out + "/summary.json");
-    if (earlier.is_object() && earlier.contains("wall_time_s") && earlier["wall_time_s"].is_number())
-      wall_before_restart_s = earlier["wall_time_s"].get<double>();
     from_exchange = newest_common_checkpoint(out, listing);
     if (from_exchange == 0)
       throw Error(out + ": no checkpoint common to the coupler, the terrain and the tyre to restart from (" + listing + ")");
@@ -169,6 +163,9 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
                  transport::vendor_name(vendors.at("terrain")), transport::vendor_name(vendors.at("tyre")), domain,
                  hex(run_id).c_str(),
                  from_exchange > 0 ? (", continuing from exchange " + std::to_string(from_exchange)).c_str() : "");
+    // A process that fails before it writes its summary must not leave an
+    // earlier attempt's in its place (read below as this attempt's).
+    for (const auto& p : coupled_processes) std::filesystem::remove(out + "/" + p.role + "/summary.json", ignored);
     // The solvers get --coupled; the tyre alone prints progress.
     std::vector<ChildSpec> children;
     for (const auto& [role, program] : coupled_processes)
@@ -244,13 +241,11 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
   if (tyre.is_object() && tyre.contains("results"))
     for (const auto& [k, v] : tyre["results"].items()) results_json["tyre"][k] = v;
   summary["results"] = results_json;
-  for (const char* k : {"wall_time_s", "sim_time_s", "steps", "time_step", "friction", "rejected_samples"})
+  // The coupler's wall time counts the attempts before a restart up to the
+  // checkpoint it continued from (cosim::RunRecord): what the whole run cost.
+  for (const char* k : {"wall_time_s", "wall_time_this_attempt_s", "sim_time_s", "steps", "time_step", "friction",
+                        "rejected_samples"})
     if (coupler.is_object() && coupler.contains(k)) summary[k] = coupler[k];
-  if (request.restart && summary.contains("wall_time_s") && summary["wall_time_s"].is_number()) {
-    summary["wall_time_this_attempt_s"] = summary["wall_time_s"];
-    summary["wall_time_before_restart_s"] = wall_before_restart_s;
-    summary["wall_time_s"] = wall_before_restart_s + summary["wall_time_s"].get<double>();
-  }
   if (terrain.is_object()) summary["particles"] = terrain.value("particles", nlohmann::json());
   if (tyre.is_object()) summary["elements"] = tyre.value("elements", nlohmann::json());
   // The run's speed and what the coupling did (docs/coupling.md).

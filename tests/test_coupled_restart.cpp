@@ -103,10 +103,14 @@ TEST_F(CoupledRestart, AStopSignalCheckpointsEveryProcessAtOneExchangeAndTheRest
   ASSERT_EQ(cosim::run_child(cosim_bin(), args), 0) << read_file(out + ".log");
   const auto restarted = summary(out + "/summary.json");
   EXPECT_EQ(restarted["restarted_from_exchange"], stop);
-  // The run's wall time is both attempts' (what the whole run cost), each kept apart.
-  EXPECT_EQ(restarted["wall_time_before_restart_s"].get<double>(), stopped_wall_s);
-  EXPECT_EQ(restarted["wall_time_s"].get<double>(),
-            stopped_wall_s + restarted["wall_time_this_attempt_s"].get<double>());
+  // The run's wall time is what the whole run cost: this attempt's and the
+  // stopped one's up to the checkpoint it continued from. The checkpoint was
+  // written before the stopped attempt's summary, which followed it within its
+  // finalize (plots, the last VTK frame: under 2 s on this scene).
+  const double before_s =
+      restarted["wall_time_s"].get<double>() - restarted["wall_time_this_attempt_s"].get<double>();
+  EXPECT_LE(before_s, stopped_wall_s);
+  EXPECT_GT(before_s, stopped_wall_s - 2.0);
   expect_same_run(out);
 }
 

@@ -119,7 +119,9 @@ RunRecord::RunRecord(const LoadedScene& loaded, std::string out_dir, const std::
               {"overrides", overrides},         {"results", nlohmann::json::object()}};
 }
 
-double RunRecord::wall_s() const { return now_s() - start_s_; }
+double RunRecord::wall_s() const { return wall_before_s_ + wall_this_attempt_s(); }
+
+double RunRecord::wall_this_attempt_s() const { return now_s() - start_s_; }
 
 CsvWriter& RunRecord::series(const std::string& file, const std::vector<std::string>& columns) {
   if (series_.count(file)) throw Error(path(file) + ": the run opened this series twice");
@@ -132,6 +134,7 @@ void RunRecord::save(CheckpointWriter& out) {
   for (auto& [file, csv] : series_)
     if (csv) out.put_value<std::uint64_t>("record.series." + file, csv->length());
   out.put_text("record.summary", summary_.dump());
+  out.put_value<double>("record.wall_s", wall_s());
 }
 
 void RunRecord::restore(const CheckpointReader& in) {
@@ -152,6 +155,9 @@ void RunRecord::restore(const CheckpointReader& in) {
     if (csv && !in.has(prefix + file))
       throw Error(in.path() + ": the checkpoint does not continue series " + file + ", which this run writes");
   restart_ = false;  // a series opened from here on starts afresh
+  // The attempts before this one, up to the checkpoint (work they did after it
+  // is redone here and counted once). A checkpoint without it: none known.
+  wall_before_s_ = in.has("record.wall_s") ? in.get_value<double>("record.wall_s") : 0.0;
 }
 
 void RunRecord::flush_series() {
@@ -181,6 +187,7 @@ void RunRecord::plot_map(const std::string& csv_file, const std::string& png_fil
 void RunRecord::write(const std::string& status, double sim_time_s, std::uint64_t steps) {
   summary_["status"] = status;
   summary_["wall_time_s"] = wall_s();
+  if (wall_before_s_ > 0.0) summary_["wall_time_this_attempt_s"] = wall_this_attempt_s();
   summary_["sim_time_s"] = sim_time_s;
   summary_["steps"] = steps;
   if (!references_.empty()) summary_["comparison"] = compare_with_references(references_, summary_["results"]);

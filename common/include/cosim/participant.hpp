@@ -60,8 +60,12 @@ class RunRecord {
   std::string path(const std::string& file) const { return out_dir_ + "/" + file; }
   nlohmann::json& summary() { return summary_; }
   nlohmann::json& results() { return summary_["results"]; }
-  // Wall time since the record was made [s].
+  // Wall time of the run [s]: since the record was made, plus, in a restarted
+  // run, what the attempts before it had spent up to the checkpoint it
+  // continues from (so that steps / wall time stays a speed across restarts).
   double wall_s() const;
+  // Wall time of this attempt alone [s].
+  double wall_this_attempt_s() const;
 
   // Opens out_dir/file with this header (once per file; the run owns it).
   CsvWriter& series(const std::string& file, const std::vector<std::string>& columns);
@@ -93,6 +97,7 @@ class RunRecord {
   nlohmann::json summary_;
   std::map<std::string, std::unique_ptr<CsvWriter>> series_;
   double start_s_;
+  double wall_before_s_ = 0.0;  // the checkpoint's wall time, when restarted
 };
 
 // The hooks a program supplies. The skeleton calls, in order:
