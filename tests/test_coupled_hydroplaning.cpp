@@ -50,19 +50,27 @@ ShareCurve read_share_curve(const std::string& file) {
   return c;
 }
 
+// The suite's case (above) with the water ending at water_end_x_m; the tyre's
+// summary.json, empty if the run failed (the failure is reported).
+nlohmann::json run_case(const std::string& dir, int domain, const std::string& water_end_x_m) {
+  auto [code, out] = shell(
+      bin() + "/cosim run " + test_support::scene_path("tyre_hydroplaning") + " --out " + dir +
+      " --dds cyclone --domain " + std::to_string(domain) + " --no-vtk --quiet --set sph.particle_spacing_m=0.01"
+      " --set sph.container.max.x=" + water_end_x_m + " --set sph.blocks[0].region.max.x=" + water_end_x_m +
+      " --set tyre.rim.speed_ramp_time_s=0.1 --set tyre.stages.rolling_s=0.1 --set tyre.stages.loading_s=0.04"
+      " --set time.max_steps=60000");
+  EXPECT_EQ(code, 0) << out;
+  if (code != 0) return nlohmann::json::object();
+  std::ifstream summary_file(dir + "/tyre/summary.json");
+  return nlohmann::json::parse(summary_file);
+}
+
 TEST(CoupledHydroplaning, TheRoadsShareFallsAsTheSpeedRisesUntilTheTyreIsAfloat) {
   const std::string dir = test_support::scratch("coupled_hydroplaning");
   // time.max_steps bounds the run (46,495 tyre steps measured to the end of the
   // rolling stage); a run stopped by it has not floated and fails below.
-  auto [code, out] = shell(
-      bin() + "/cosim run " + test_support::scene_path("tyre_hydroplaning") + " --out " + dir +
-      " --dds cyclone --domain 21 --no-vtk --quiet --set sph.particle_spacing_m=0.01"
-      " --set sph.container.max.x=1.5 --set sph.blocks[0].region.max.x=1.5"
-      " --set tyre.rim.speed_ramp_time_s=0.1 --set tyre.stages.rolling_s=0.1 --set tyre.stages.loading_s=0.04"
-      " --set time.max_steps=60000");
-  ASSERT_EQ(code, 0) << out;
-  std::ifstream summary_file(dir + "/tyre/summary.json");
-  const nlohmann::json tyre = nlohmann::json::parse(summary_file);
+  const nlohmann::json tyre = run_case(dir, 21, "1.5");
+  ASSERT_TRUE(tyre.contains("results")) << tyre.dump(1);
   const auto& h = tyre["results"]["hydroplaning"];
   ASSERT_TRUE(h.is_object()) << tyre.dump(1);
   EXPECT_TRUE(h["ended_afloat"].get<bool>());
@@ -112,15 +120,8 @@ std::vector<double> last_row(const std::string& file) {
 // end (0.14 s, the rim 1.3 m further on).
 TEST(CoupledHydroplaning, TheRollingStageEndsOnceTheTreadIsPastTheWater) {
   const std::string dir = test_support::scratch("coupled_hydroplaning_end");
-  auto [code, out] = shell(
-      bin() + "/cosim run " + test_support::scene_path("tyre_hydroplaning") + " --out " + dir +
-      " --dds cyclone --domain 22 --no-vtk --quiet --set sph.particle_spacing_m=0.01"
-      " --set sph.container.max.x=0.6 --set sph.blocks[0].region.max.x=0.6"
-      " --set tyre.rim.speed_ramp_time_s=0.1 --set tyre.stages.rolling_s=0.1 --set tyre.stages.loading_s=0.04"
-      " --set time.max_steps=60000");
-  ASSERT_EQ(code, 0) << out;
-  std::ifstream summary_file(dir + "/tyre/summary.json");
-  const nlohmann::json tyre = nlohmann::json::parse(summary_file);
+  const nlohmann::json tyre = run_case(dir, 22, "0.6");
+  ASSERT_TRUE(tyre.contains("results")) << tyre.dump(1);
   const auto& h = tyre["results"]["hydroplaning"];
   ASSERT_TRUE(h.is_object()) << tyre.dump(1);
   EXPECT_FALSE(h["ended_afloat"].get<bool>());

@@ -28,6 +28,15 @@ TreadBlockGeometry grooved(bool slice) {
   return g;
 }
 
+// The block of linear elastic tread rubber (E 4.588 MPa, nu 0, 1178 kg/m^3).
+Model3d elastic_block(const Mesh3D& mesh) {
+  TyreMaterials materials;
+  SolidMaterial& solid = materials.solid[static_cast<int>(Region::tread)];
+  solid.kind = SolidMaterial::Kind::elastic;
+  solid.elastic = {4.588e6, 0.0, 1178.0};
+  return build_model3d(mesh, materials, CrossSection{}, Model3dOptions{});
+}
+
 double hex_volume(const Mesh3D& m, int e) {
   double X[8][3];
   for (int a = 0; a < 8; ++a)
@@ -101,11 +110,7 @@ TEST(TreadBlockMesh, ASliceHasNoFacetsOnItsSymmetryPlanes) {
 TEST(TreadBlockMesh, TheRoadAreaOfTheFaceIsItsLandNotItsWalls) {
   const TreadBlockGeometry g = grooved(false);
   const Mesh3D mesh = make_tread_block_mesh(g, 0.0);
-  TyreMaterials materials;
-  SolidMaterial& solid = materials.solid[static_cast<int>(Region::tread)];
-  solid.kind = SolidMaterial::Kind::elastic;
-  solid.elastic = {4.588e6, 0.0, 1178.0};
-  const Model3d model = build_model3d(mesh, materials, CrossSection{}, Model3dOptions{});
+  const Model3d model = elastic_block(mesh);
   double face = 0.0, all = 0.0;
   for (std::size_t c = 0; c < model.contact_nodes.size(); ++c) {
     all += model.contact_node_area_m2[c];
@@ -142,11 +147,7 @@ TEST(TreadBlockStep, PushedOntoARoadCarriesTheUniaxialForce) {
   TreadBlockGeometry g;
   g.length_x_m = 0.02, g.width_y_m = 0.02, g.base_thickness_m = 0.01, g.element_size_m = 0.0025;
   const Mesh3D mesh = make_tread_block_mesh(g, 0.0);
-  TyreMaterials materials;
-  SolidMaterial& solid = materials.solid[static_cast<int>(Region::tread)];
-  solid.kind = SolidMaterial::Kind::elastic;
-  solid.elastic = {4.588e6, 0.0, 1178.0};
-  const Model3d model = build_model3d(mesh, materials, CrossSection{}, Model3dOptions{});
+  const Model3d model = elastic_block(mesh);
   State3d s = make_state3d(model, model.mesh.nodes, 0.01, 1.0);
   place_road(model, s, 0.0, 0.0, 1.0);
   s.damping_per_s = 2000.0;

@@ -1,5 +1,6 @@
 #include "tyre_fe/outputs.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -101,21 +102,26 @@ void FrameWriter::write(const Model3d& model, const State3d& s) {
   surface_frames_.write(s.time_s, vtk_facets(model.mesh, x, {facet_pressure(model, s)}));
 }
 
-void write_footprint(const std::string& folder, const Model3d& model, const State3d& s) {
+double write_footprint(const std::string& folder, const Model3d& model, const State3d& s) {
   const std::vector<double> p = contact_pressure_Pa(model, s);
   const std::string csv = folder + "/footprint.csv";
+  double largest = 0.0;
   {
     std::ofstream out(csv);
     if (!out) throw cosim::Error(csv + ": cannot write");
     out << "x_m,y_m,contact_pressure_Pa\n" << std::setprecision(9);
-    for (int n : model.contact_nodes)
-      if (p[n] > 0.0) out << s.x[n] - s.rim.x << "," << s.y[n] << "," << p[n] << "\n";
+    for (int n : model.contact_nodes) {
+      if (!(p[n] > 0.0)) continue;
+      out << s.x[n] - s.rim.x << "," << s.y[n] << "," << p[n] << "\n";
+      largest = std::max(largest, p[n]);
+    }
   }
   cosim::PlotOptions o;
   o.title = "Footprint: contact pressure [kPa] (x forward, y left)";
   o.x_label = "x [m]", o.y_label = "y [m]", o.colour_label = "kPa";
   o.height_px = 700, o.equal_axes = true;
   cosim::plot_png(folder + "/footprint.png", o, {{csv, "1:2:($3/1000)", "points pt 5 ps 1.6 palette", ""}});
+  return largest;
 }
 
 void write_plots(const std::string& folder) {

@@ -610,7 +610,13 @@ void TyreRun::end_stage() {
       if (port_) results["rim_drop_m"] = free_radius(model, s_) - s_.rim.z;
       results["kinetic_energy_after_loading_J"] = s_.energy.kinetic_J;
       // On a terrain solver the footprint is the coupler's (contact_pressure.png).
-      if (!port_) write_footprint(record_->out_dir(), model, s_);
+      if (!port_) {
+        // Thesis Figure 4.3: the footprint's pressure, its mean (load over the
+        // road-facing area) and its peak (a node's force over its share).
+        results["contact_pressure_max_Pa"] = write_footprint(record_->out_dir(), model, s_);
+        results["contact_pressure_mean_Pa"] = s_.road.contact_area_m2 > 0 ? s_.road.force_z_N / s_.road.contact_area_m2
+                                                                          : 0.0;
+      }
       s_.damping_per_s = 0.0;
       break;
     }

@@ -49,8 +49,9 @@ std::vector<double> contact_pressure_Pa(const Model3d& model, const State3d& s);
 std::vector<double> facet_contact_pressure_Pa(const Mesh3D& mesh, const std::vector<double>& nodal_road_pressure_Pa,
                                               const ContactSurfaceDef& surface, const cosim::SurfaceLoads& loads);
 
-// footprint.csv (x, y, contact pressure of the nodes in contact) and footprint.png.
-void write_footprint(const std::string& folder, const Model3d& model, const State3d& s);
+// footprint.csv (x, y, contact pressure of the nodes in contact) and
+// footprint.png; returns the largest nodal contact pressure [Pa].
+double write_footprint(const std::string& folder, const Model3d& model, const State3d& s);
 
 // PNG plots of tyre.csv (rim height, road forces, energies); never fails a run.
 void write_plots(const std::string& folder);
