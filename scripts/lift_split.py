@@ -34,20 +34,11 @@ def read_forces(path):
     return {c: [float(r[c]) for r in rows] for c in need}
 
 
-def centred_means(t, values, span):
-    """Mean of each series over [t - span/2, t + span/2], by prefix sums."""
-    out = []
-    for v in values:
-        prefix = [0.0]
-        for x in v:
-            prefix.append(prefix[-1] + x)
-        out.append(prefix)
-    means = []
-    for i, ti in enumerate(t):
-        a = bisect.bisect_left(t, ti - 0.5 * span)
-        b = bisect.bisect_right(t, ti + 0.5 * span)
-        means.append([(p[b] - p[a]) / (b - a) for p in out])
-    return means
+def prefix_sums(v):
+    out = [0.0]
+    for x in v:
+        out.append(out[-1] + x)
+    return out
 
 
 def main():
@@ -62,16 +53,19 @@ def main():
     f4, top, groove = (f["vertical_pressure_force_N"], f["vertical_pressure_force_tread_top_N"],
                        f["vertical_pressure_force_groove_N"])
     rest = [a_ - b - c for a_, b, c in zip(f4, top, groove)]
-    means = centred_means(t, [f4, top, groove, rest], a.mean_s)
+    sums = [prefix_sums(v) for v in (f4, top, groove, rest)]
     csv_path = a.out_prefix + ".csv"
     with open(csv_path, "w") as out:
         out.write("time_s,speed_m_per_s,vertical_pressure_force_N,tread_top_N,groove_N,rest_N\n")
         step = max(1, len(t) // 2000)  # about 2,000 rows
         for i in range(0, len(t), step):
-            a_ = bisect.bisect_left(t, t[i] - 0.5 * a.mean_s)
-            b = min(len(t) - 1, bisect.bisect_right(t, t[i] + 0.5 * a.mean_s) - 1)
-            speed = (x[b] - x[a_]) / (t[b] - t[a_]) if t[b] > t[a_] else 0.0
-            out.write(f"{t[i]:.6f},{speed:.4f}," + ",".join(f"{m:.2f}" for m in means[i]) + "\n")
+            # The rows within [t - span/2, t + span/2]: first and one past the last.
+            first = bisect.bisect_left(t, t[i] - 0.5 * a.mean_s)
+            end = bisect.bisect_right(t, t[i] + 0.5 * a.mean_s)
+            last = end - 1
+            speed = (x[last] - x[first]) / (t[last] - t[first]) if t[last] > t[first] else 0.0
+            means = [(p[end] - p[first]) / (end - first) for p in sums]
+            out.write(f"{t[i]:.6f},{speed:.4f}," + ",".join(f"{m:.2f}" for m in means) + "\n")
     script = f"""set terminal pngcairo size 1000,600 font ',11'
 set output '{a.out_prefix}.png'
 set datafile separator ','

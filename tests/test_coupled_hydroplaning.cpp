@@ -33,6 +33,15 @@ struct ShareCurve {
   std::vector<double> speed_m_per_s, road_share;
 };
 
+// One CSV row as numbers.
+std::vector<double> numbers(const std::string& line) {
+  std::stringstream row(line);
+  std::string cell;
+  std::vector<double> v;
+  while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
+  return v;
+}
+
 ShareCurve read_share_curve(const std::string& file) {
   std::ifstream in(file);
   std::string line;
@@ -40,10 +49,7 @@ ShareCurve read_share_curve(const std::string& file) {
   EXPECT_EQ(line, "time_s,speed_m_per_s,road_force_N,water_lift_N,road_share") << file;
   ShareCurve c;
   while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::string cell;
-    std::vector<double> v;
-    while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
+    const std::vector<double> v = numbers(line);
     if (v.size() != 5) continue;
     c.speed_m_per_s.push_back(v[1]), c.road_share.push_back(v[4]);
   }
@@ -105,11 +111,7 @@ std::vector<double> last_row(const std::string& file) {
   std::string line, last;
   while (std::getline(in, line))
     if (!line.empty()) last = line;
-  std::vector<double> v;
-  std::stringstream row(last);
-  std::string cell;
-  while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
-  return v;
+  return numbers(last);
 }
 
 // The same coarse case on 0.6 m of water: the tread reaches the water's end at
