@@ -67,6 +67,10 @@ void validate_coupling_scene(const cosim::LoadedScene& loaded, cosim::Validation
              "the road lies at the terrain's floor (sph.container.min.z), which must be below its surface z = 0 (got " +
                  num(scene.sph().container().min().z()) + ")");
   }
+  if (c.place_terrain_around_loaded_tyre() && !(c.rigid_road_under_terrain() && scene.has_tyre()))
+    r.fail(loc.where("place_terrain_around_loaded_tyre"),
+           "the tyre is loaded on its own road before the terrain is placed around it: the scene needs a `tyre` "
+           "and coupling.rigid_road_under_terrain: true");
   if (scene.has_tyre() && scene.tyre().stages().loading_s() <= 0)
     r.fail(loaded.locator().child("tyre").child("stages").where("loading_s"),
            "a coupled run loads the tyre onto the terrain: give loading_s > 0");

@@ -248,6 +248,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
     particle_radius_m_ = contact.particle_radius_m;
     contact.stiffness_N_per_m = model.settings.contact_stiffness * c.contact_stiffness_scale();
     solver_->couple(contact);
+    solver_->place_around_surface_owner(c.place_terrain_around_loaded_tyre());
     // A particle still moving faster than 1 cm/s stays in the active domain
     // (docs/coupling.md): the resting terrain is at rest to well below that.
     solver_->set_active_domain(c.active_domain_margin_m(), 0.01, c.active_domain_wake_limit_m());
@@ -290,7 +291,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
     probe_csv_ = &record.series("floor_pressure.csv", {"time_s", "floor_pressure_Pa"});
   if (vtk_interval_ > 0) vtk_ = std::make_unique<cosim::VtkSeries>(record.path("vtk"), "particles");
   record_rows(true);
-  if (vtk_) write_frame(), next_vtk_ = vtk_interval_;
+  if (vtk_) write_frame(), next_vtk_ = solver_->time() + vtk_interval_;
   return model.settings.end_time;
 }
 
@@ -299,6 +300,9 @@ bool SphRun::exchange_surface(std::uint64_t exchange) {
   const cosim::SurfaceState* state = port_->surface(exchange);
   exchange_wait_s_ += seconds_since(t0);
   if (state) assemble_contact_surface(port_->topology(), *state, surface_, compact_scratch_);
+  // The terrain's clock starts at the owner's: a tyre joins after its inflation
+  // check, or after its loading on the road (place_terrain_around_loaded_tyre).
+  if (state && exchange == 0 && solver_->steps() == 0) solver_->start_clock_at(state->time_s);
   solver_->contact_surface(state ? &surface_ : nullptr, exchange);
   if (!state) return false;
   const SurfaceContactResult& l = solver_->surface_loads();
@@ -520,6 +524,10 @@ void SphRun::finalize(cosim::RunRecord& record) {
       results["drained_water_mass_kg"] = solver.drained_mass_kg();
       results["drained_water_share"] = solver.drained_mass_kg() / (water_kg + solver.drained_mass_kg());
       results["water_density_out_of_range_particles"] = solver.density_out_particles();  // among the drained
+    }
+    if (scene_.coupling().place_terrain_around_loaded_tyre()) {  // where the tyre stood when the terrain was placed
+      results["particles_removed_inside_the_tyre"] = solver.displaced_particles();
+      results["mass_removed_inside_the_tyre_kg"] = solver.displaced_mass_kg();
     }
   }
   for (const auto& b : model.bodies) {

@@ -12,6 +12,7 @@
 #include "cosim/ramp.hpp"
 #include "snow_sph/boundaries.hpp"
 #include "snow_sph/gradient_correction.hpp"
+#include "snow_sph/placement.hpp"
 #include "snow_sph/cylinder_contact.hpp"
 
 namespace snow_sph {
@@ -556,6 +557,19 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   // Exchange 0 is made with the particles at t_0, before the first step.
   // The contact's step is the window over which its force is held.
   const double dt = exchange == 0 ? stable_dt() : window_dt_;
+  if (exchange == 0 && place_around_owner_) {
+    // The terrain placed around the body at rest (placement.hpp): what it
+    // occupies, and the particles that would overlap it, are not terrain; the
+    // state at t_0 is that of the particles left.
+    const Particles& p = m_.particles;
+    const auto inside = particles_in_body(*surface, p.n_real, p.x.data(), p.y.data(), p.z.data(),
+                                          surface_params_.particle_radius_m);
+    if (!inside.empty()) {
+      displaced_mass_kg_ += remove_particles(inside).first;
+      displaced_particles_ += inside.size();
+      prepare();
+    }
+  }
   if (exchange == 0) {
     // Multi-rate: the owner holds these loads over the window (docs/coupling.md).
     held_load_limit_dt_ = held_load_window_limit(*surface, surface_params_.stiffness_N_per_m, m_.settings.spacing);
@@ -604,25 +618,38 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
 // leaves the terrain and their kinetic energy the balance; ghosts and lists are
 // made anew for the particles that stay.
 void Solver::drain(const std::vector<std::uint32_t>& drained) {
+  const auto [mass, kinetic] = remove_particles(drained);
+  energy_.drained_kinetic += kinetic;
+  drained_mass_kg_ += mass;
+  drained_particles_ += drained.size();
+}
+
+std::pair<double, double> Solver::remove_particles(const std::vector<std::uint32_t>& gone) {
   Particles& p = m_.particles;
   std::vector<std::uint32_t> keep;
-  keep.reserve(p.n_real - drained.size());
+  keep.reserve(p.n_real - gone.size());
   std::size_t next = 0;
+  double mass = 0.0, kinetic = 0.0;
   for (std::size_t i = 0; i < p.n_real; ++i) {
-    if (next < drained.size() && drained[next] == i) {
-      energy_.drained_kinetic += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
-      drained_mass_kg_ += p.mass[i];
+    if (next < gone.size() && gone[next] == i) {
+      kinetic += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+      mass += p.mass[i];
       ++next;
       continue;
     }
     keep.push_back(static_cast<std::uint32_t>(i));
   }
-  drained_particles_ += drained.size();
   p.resize(p.n_real);
   p.permute_real(keep);
   p.n_real = keep.size();
   p.resize(p.n_real);
   rebuild_if_needed(true);
+  return {mass, kinetic};
+}
+
+void Solver::start_clock_at(double time_s) {
+  if (steps_ != 0) throw cosim::Error("the terrain's clock can be set only before its first step");
+  time_ = time_s;
 }
 
 void Solver::prepare() {

@@ -20,39 +20,6 @@ using V3 = Eigen::Vector3d;
 constexpr double kSameSurfaceCos = 0.99619469809;  // cos 5 deg
 constexpr double kStickInheritCos = 0.86602540378;  // cos 30 deg: a stick moves onto a neighbouring facet
 
-// Closest point to p on triangle abc and its barycentric weights (Ericson,
-// Real-Time Collision Detection, 2005, 5.1.5: Voronoi regions of the vertices,
-// edges and face).
-V3 closest_on_triangle(const V3& p, const V3& a, const V3& b, const V3& c, double w[3]) {
-  const V3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return w[0] = 1, w[1] = 0, w[2] = 0, a;
-  const V3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return w[0] = 0, w[1] = 1, w[2] = 0, b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return w[0] = 1 - v, w[1] = v, w[2] = 0, V3(a + v * ab);
-  }
-  const V3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return w[0] = 0, w[1] = 0, w[2] = 1, c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double t = d2 / (d2 - d6);
-    return w[0] = 1 - t, w[1] = 0, w[2] = t, V3(a + t * ac);
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return w[0] = 0, w[1] = 1 - t, w[2] = t, V3(b + t * (c - b));
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  const double v = vb * denom, t = vc * denom;
-  return w[0] = 1 - v - t, w[1] = v, w[2] = t, V3(a + ab * v + ac * t);
-}
-
 // Facets binned in a uniform grid over their bounding boxes grown by the reach.
 struct FacetGrid {
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, cell = 1.0;
@@ -184,6 +151,41 @@ V3 facet_area_vector(const ContactSurface& s, std::size_t f) {
 }
 
 }  // namespace
+
+// Closest point to p on triangle abc and its barycentric weights (Ericson,
+// Real-Time Collision Detection, 2005, 5.1.5: Voronoi regions of the vertices,
+// edges and face).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c, double w[3]) {
+  using V3 = Eigen::Vector3d;
+  const V3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return w[0] = 1, w[1] = 0, w[2] = 0, a;
+  const V3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return w[0] = 0, w[1] = 1, w[2] = 0, b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return w[0] = 1 - v, w[1] = v, w[2] = 0, V3(a + v * ab);
+  }
+  const V3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return w[0] = 0, w[1] = 0, w[2] = 1, c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    return w[0] = 1 - t, w[1] = 0, w[2] = t, V3(a + t * ac);
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return w[0] = 0, w[1] = 1 - t, w[2] = t, V3(b + t * (c - b));
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, t = vc * denom;
+  return w[0] = 1 - v - t, w[1] = v, w[2] = t, V3(a + ab * v + ac * t);
+}
 
 void assemble_contact_surface(const cosim::SurfaceTopology& topology, const cosim::SurfaceState& state,
                               ContactSurface& s, std::vector<std::int64_t>& compact_of) {

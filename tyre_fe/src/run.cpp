@@ -141,6 +141,11 @@ class TyreRun final : public cosim::Participant {
   // What the tyre stands on, for the names of its forces: the terrain of a
   // coupled run, the rigid road, or both ("ground_": a road under the terrain).
   bool road_under_terrain() const { return port_ && scene_.coupling().rigid_road_under_terrain(); }
+  // Loaded on the road alone, the terrain placed around the tyre at rest (thesis 4.2).
+  bool loaded_before_terrain() const {
+    return road_under_terrain() && scene_.coupling().place_terrain_around_loaded_tyre();
+  }
+  void stand_on_the_terrains_floor();
   std::string ground(const char* quantity) const {
     return std::string(road_under_terrain() ? "ground_" : port_ ? "terrain_" : "road_") + quantity;
   }
@@ -415,10 +420,13 @@ void TyreRun::begin_stage() {
       stage_t_end_ = s_.time_s + st.transfer_check_s();
       break;
     case kLoading:  // 4. Loading onto the road or the terrain (dynamic relaxation).
-      if (port_) join_terrain();
+      if (port_ && !loaded_before_terrain()) join_terrain();
       stage_t_end_ = s_.time_s + st.loading_s();
       if (st.loading_s() <= 0) break;
-      if (!port_) place_road(model, s_, t_.road().initial_gap_m(), t_.road().friction_coefficient(), t_.road().penalty_scale());
+      if (loaded_before_terrain())
+        stand_on_the_terrains_floor();
+      else if (!port_)
+        place_road(model, s_, t_.road().initial_gap_m(), t_.road().friction_coefficient(), t_.road().penalty_scale());
       radius0_ = free_radius(model, s_);
       s_.damping_per_s = st.loading_damping_per_s();
       load_ = t_.rim().wheel_load_n(), load_ramp_ = t_.rim().load_ramp_time_s();
@@ -427,6 +435,7 @@ void TyreRun::begin_stage() {
       at_rest_ = false;
       break;
     case kRolling: {  // 5. Rolling.
+      if (loaded_before_terrain()) join_terrain();  // the water placed around the tyre at rest
       stage_t_end_ = s_.time_s + st.rolling_s();
       if (st.rolling_s() <= 0) break;
       average_window_ = st.average_last_s() > 0 ? st.average_last_s() : 0.5 * st.rolling_s();
@@ -441,21 +450,37 @@ void TyreRun::begin_stage() {
   }
 }
 
+// Moves the tyre so that its lowest point is `height_m` (in the frame whose z = 0
+// is the terrain's undisturbed surface, docs/coupling.md).
+static void lower_tyre_to(const Model3d& model, State3d& s, double height_m) {
+  double lowest = 1e30;
+  for (int n : model.contact_nodes) lowest = std::min(lowest, s.z[n]);
+  const double lift = height_m - lowest;
+  for (double& z : s.z) z += lift;
+  s.rim.z += lift;
+}
+
+// Loading before the terrain is placed (coupling.place_terrain_around_loaded_tyre):
+// the road at the terrain's floor, the tyre road.initial_gap_m above it.
+void TyreRun::stand_on_the_terrains_floor() {
+  const double floor_z = scene_.sph().container().min().z();
+  lower_tyre_to(*model_, s_, floor_z + t_.road().initial_gap_m());
+  set_road(s_, floor_z, t_.road().friction_coefficient(), t_.road().penalty_scale());
+}
+
 // The terrain's undisturbed surface is z = 0 (docs/coupling.md): lift the tyre
-// so that its lowest point is initial_gap above it, then join the run.
+// so that its lowest point is initial_gap above it, then join the run. A tyre
+// loaded before the terrain is placed joins where it stands.
 void TyreRun::join_terrain() {
   const Model3d& model = *model_;
   const auto& c = scene_.coupling();
-  const double gap = c.initial_gap_m();
-  double lowest = 1e30;
-  for (int n : model.contact_nodes) lowest = std::min(lowest, s_.z[n]);
-  const double lift = gap - lowest;
-  for (double& z : s_.z) z += lift;
-  s_.rim.z += lift;
-  s_.road.height_m = 0.0;  // heights below are measured from the terrain surface
-  if (c.rigid_road_under_terrain()) {
-    // The road at the terrain's floor; heights are then measured from the road.
-    set_road(s_, scene_.sph().container().min().z(), t_.road().friction_coefficient(), t_.road().penalty_scale());
+  if (!loaded_before_terrain()) {
+    lower_tyre_to(model, s_, c.initial_gap_m());
+    s_.road.height_m = 0.0;  // heights below are measured from the terrain surface
+    if (c.rigid_road_under_terrain()) {
+      // The road at the terrain's floor; heights are then measured from the road.
+      set_road(s_, scene_.sph().container().min().z(), t_.road().friction_coefficient(), t_.road().penalty_scale());
+    }
   }
   s_.terrain.surface = make_contact_surface(model, s_);
   s_.terrain.band_m = c.contact_band_m();
@@ -607,10 +632,11 @@ void TyreRun::end_stage() {
       // The rim's drop below where the undeformed tyre would touch the undisturbed
       // terrain surface z = 0: the sinkage less the tyre's deflection. The sinkage
       // (the rut below the undisturbed surface, thesis 5.3, 6.2) is the coupler's.
-      if (port_) results["rim_drop_m"] = free_radius(model, s_) - s_.rim.z;
+      if (port_ && !loaded_before_terrain()) results["rim_drop_m"] = free_radius(model, s_) - s_.rim.z;
       results["kinetic_energy_after_loading_J"] = s_.energy.kinetic_J;
-      // On a terrain solver the footprint is the coupler's (contact_pressure.png).
-      if (!port_) {
+      // On a terrain solver the footprint is the coupler's (contact_pressure.png);
+      // a tyre loaded on its road before the terrain is placed has the road's.
+      if (!port_ || loaded_before_terrain()) {
         // Thesis Figure 4.3: the footprint's pressure, its mean (load over the
         // road-facing area) and its peak (a node's force over its share).
         results["contact_pressure_max_Pa"] = write_footprint(record_->out_dir(), model, s_);

@@ -14,6 +14,7 @@
 // Fourtakas et al. 2019).
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cosim/checkpoint.hpp"
@@ -93,6 +94,15 @@ class Solver {
   // Water particles drained so far from films thinner than they resolve, and their mass.
   std::size_t drained_particles() const { return drained_particles_; }
   double drained_mass_kg() const { return drained_mass_kg_; }
+  // A terrain placed around the surface's owner (coupling.place_terrain_around_loaded_tyre):
+  // exchange 0 removes the particles inside it (placement.hpp); how many, and their mass.
+  // Call before the first exchange.
+  void place_around_surface_owner(bool on) { place_around_owner_ = on; }
+  std::size_t displaced_particles() const { return displaced_particles_; }
+  double displaced_mass_kg() const { return displaced_mass_kg_; }
+  // Sets the clock, before the first step: a coupled terrain starts at the
+  // time of the owner's first surface (a tyre joins after its loading).
+  void start_clock_at(double time_s);
   // Among them, those removed because their density left the valid range.
   std::size_t density_out_particles() const { return density_out_particles_; }
 
@@ -162,6 +172,8 @@ class Solver {
   void update_activity(const ContactSurface* surface);
   void rebuild_lists();
   void drain(const std::vector<std::uint32_t>& drained);
+  // Takes the particles (ascending indices) out of the terrain; returns their mass and kinetic energy.
+  std::pair<double, double> remove_particles(const std::vector<std::uint32_t>& gone);
   template <class Body> void for_active(const char* label, Body&& body);
 
   Model& m_;
@@ -202,6 +214,9 @@ class Solver {
   std::size_t drained_particles_ = 0;
   double drained_mass_kg_ = 0.0;
   std::size_t density_out_particles_ = 0;
+  bool place_around_owner_ = false;
+  std::size_t displaced_particles_ = 0;
+  double displaced_mass_kg_ = 0.0;
   double window_dt_ = 0.0;                 // the last window advance() took
   std::uint64_t substepped_windows_ = 0;
   std::uint32_t most_substeps_ = 1;

@@ -8,6 +8,8 @@
 #include <limits>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "cosim/surface_exchange.hpp"
 
 namespace snow_sph {
@@ -120,6 +122,12 @@ struct SurfaceContactResult {
 // reaches down to it misses no particle; lowest double without particles.
 double particle_reach_z(std::size_t n, const double* z, const double* vz, const double* az, double window_s,
                         double particle_radius_m);
+
+// The closest point to p on the triangle abc, and its barycentric weights w
+// (Ericson, Real-Time Collision Detection, 2005, 5.1.5: Voronoi regions of the
+// vertices, edges and face).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c, double w[3]);
 
 // The sparse loads that go back to the surface's owner: the nodes and facets of
 // `state` that carry any, in the owner's numbering, with the state's exchange and time.
