@@ -302,7 +302,7 @@ bool SphRun::exchange_surface(std::uint64_t exchange) {
   if (state) assemble_contact_surface(port_->topology(), *state, surface_, compact_scratch_);
   // The terrain's clock starts at the owner's: a tyre joins after its inflation
   // check, or after its loading on the road (place_terrain_around_loaded_tyre).
-  if (state && exchange == 0 && solver_->steps() == 0) solver_->start_clock_at(state->time_s);
+  if (state && exchange == 0) solver_->start_clock_at(state->time_s);
   solver_->contact_surface(state ? &surface_ : nullptr, exchange);
   if (!state) return false;
   const SurfaceContactResult& l = solver_->surface_loads();

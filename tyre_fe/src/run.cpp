@@ -36,11 +36,7 @@ double mean_radius_of(const Mesh3D& mesh, const State3d& s, int section_node) {
 }
 
 // Lowest point of the outer surface relative to the rim node: the unloaded radius.
-double free_radius(const Model3d& m, const State3d& s) {
-  double lowest = 1e30;
-  for (int n : m.contact_nodes) lowest = std::min(lowest, s.z[n]);
-  return s.rim.z - lowest;
-}
+double free_radius(const Model3d& m, const State3d& s) { return s.rim.z - lowest_contact_z(m, s); }
 
 // The wheel load, speed and drive torque ramp in with zero rate at both ends.
 double smooth_ramp(double t, double ramp) { return cosim::ramp(cosim::RampCurve::smoothstep, t, ramp); }
@@ -453,9 +449,7 @@ void TyreRun::begin_stage() {
 // Moves the tyre so that its lowest point is `height_m` (in the frame whose z = 0
 // is the terrain's undisturbed surface, docs/coupling.md).
 static void lower_tyre_to(const Model3d& model, State3d& s, double height_m) {
-  double lowest = 1e30;
-  for (int n : model.contact_nodes) lowest = std::min(lowest, s.z[n]);
-  const double lift = height_m - lowest;
+  const double lift = height_m - lowest_contact_z(model, s);
   for (double& z : s.z) z += lift;
   s.rim.z += lift;
 }

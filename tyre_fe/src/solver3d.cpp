@@ -60,9 +60,13 @@ State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& c
 
 void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
                 double penalty_scale) {
+  set_road(s, lowest_contact_z(model, s) - gap_m, friction_coefficient, penalty_scale);
+}
+
+double lowest_contact_z(const Model3d& model, const State3d& s) {
   double lowest = 1e30;
   for (int n : model.contact_nodes) lowest = std::min(lowest, s.z[n]);
-  set_road(s, lowest - gap_m, friction_coefficient, penalty_scale);
+  return lowest;
 }
 
 void set_road(State3d& s, double height_m, double friction_coefficient, double penalty_scale) {

@@ -139,6 +139,8 @@ State3d make_state3d(const Model3d& model, const std::vector<Eigen::Vector3d>& c
 
 // The rigid road at z = height_m with its friction and penalty scale (0: 0.1).
 void set_road(State3d& s, double height_m, double friction_coefficient, double penalty_scale);
+// The height of the lowest outer (road contact) node.
+double lowest_contact_z(const Model3d& model, const State3d& s);
 // Puts a flat road `gap` below the lowest outer node.
 void place_road(const Model3d& model, State3d& s, double gap_m, double friction_coefficient,
                 double penalty_scale);
