@@ -4,8 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
 #include <vector>
 
+#include "cosim/checkpoint.hpp"
 #include "cosim/error.hpp"
 #include "tyre_fe/hydroplaning.hpp"
 
@@ -103,6 +107,88 @@ TEST(Hydroplaning, TheReadingEndsWhereTheTreadReachesTheEndOfTheWater) {
   EXPECT_LT(r.t[n - 1], t_end);
   EXPECT_GE(r.t[n], t_end);
   EXPECT_EQ(tyre_fe::samples_over_water(r.t, r.v, last_x, lead, 10.0), r.t.size());  // never reaches the end
+}
+
+// The afloat watch (tyre.stages.end_rolling_when_afloat) on a road force that
+// drops from the load to 0 at t0, sampled every 6 us: the trailing 5 ms mean
+// falls below 10 % once 90 % of its window is past t0 (t0 + 4.5 ms), and the
+// tyre is afloat kAfloatHold_s after that: t0 + 34.5 ms. The window's edge
+// and the hold's test each land on a sample, so the tolerance is 3 samples.
+struct Drop {
+  std::vector<double> t, road;
+};
+Drop make_drop(double load, double t0, double end) {
+  Drop d;
+  for (int i = 0; i * 6e-6 <= end; ++i) d.t.push_back(i * 6e-6), d.road.push_back(i * 6e-6 < t0 ? load : 0.0);
+  return d;
+}
+double first_afloat(tyre_fe::HydroplaningSamples& samples, const Drop& d, std::size_t from, double load) {
+  for (std::size_t i = from; i < d.t.size(); ++i) {
+    samples.add(d.t[i], 10.0, d.road[i], load - d.road[i]);
+    if (samples.afloat(load)) return d.t[i];
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+TEST(Hydroplaning, TheTyreIsAfloatWhenTheTrailingMeanHasStayedBelowTheCriterionForTheHold) {
+  const double load = 4000.0, t0 = 0.1;
+  const Drop d = make_drop(load, t0, 0.2);
+  tyre_fe::HydroplaningSamples samples;
+  const double expected = t0 + (1.0 - tyre_fe::kHydroplaningRoadShare) * tyre_fe::kHydroplaningFilter_s +
+                          tyre_fe::kAfloatHold_s;
+  EXPECT_NEAR(first_afloat(samples, d, 0, load), expected, 3 * 6e-6);
+}
+
+TEST(Hydroplaning, ADipShorterThanTheHoldIsNotAfloat) {
+  const double load = 4000.0;
+  Drop d = make_drop(load, 0.1, 0.2);
+  for (std::size_t i = 0; i < d.t.size(); ++i) d.road[i] = d.t[i] > 0.1 && d.t[i] < 0.12 ? 0.0 : load;
+  tyre_fe::HydroplaningSamples samples;
+  EXPECT_TRUE(std::isnan(first_afloat(samples, d, 0, load)));
+}
+
+// A run restarted from a checkpoint taken while the road force is below the
+// criterion but not yet for the hold must find the tyre afloat at the same
+// sample as the run that went on: the watch's trailing state is in the checkpoint.
+TEST(Hydroplaning, TheAfloatWatchContinuesFromACheckpoint) {
+  const double load = 4000.0, t0 = 0.1;
+  const Drop d = make_drop(load, t0, 0.2);
+  tyre_fe::HydroplaningSamples straight, before;
+  const double afloat_at = first_afloat(straight, d, 0, load);
+  std::size_t cut = 0;
+  while (d.t[cut] < t0 + 0.02) before.add(d.t[cut], 10.0, d.road[cut], load - d.road[cut]), before.afloat(load), ++cut;
+  const std::string path = ::testing::TempDir() + "hydroplaning_watch.ckpt";
+  cosim::CheckpointWriter out("tyre_fe", 1, cut, d.t[cut - 1]);
+  before.save(out);
+  out.commit(path);
+  tyre_fe::HydroplaningSamples restored;
+  restored.restore(cosim::CheckpointReader(path));
+  std::remove(path.c_str());
+  EXPECT_EQ(restored.size(), cut);
+  EXPECT_EQ(first_afloat(restored, d, cut, load), afloat_at);
+}
+
+// The run's reading over a ramp whose crossing is known in closed form
+// (vc sqrt(0.9), as above), with water to the end and with the water ending
+// before the crossing: then no critical velocity, and the speed where the tread
+// reached the end is the first sample not read.
+TEST(Hydroplaning, TheReadingStopsAtTheWatersEnd) {
+  const double load = 4000.0, vc = 15.0, top = 28.0, ramp = 0.4, lead = 0.17;
+  const Ramp r = make_ramp(load, vc, 300.0);
+  tyre_fe::HydroplaningSamples samples;
+  for (std::size_t i = 0; i < r.t.size(); ++i) samples.add(r.t[i], r.v[i], r.road[i], load - r.road[i]);
+  const double last_x = top * r.t.back() * r.t.back() / (2 * ramp);
+  const double no_end = std::numeric_limits<double>::infinity();
+  const auto all = tyre_fe::read_hydroplaning(samples, load, last_x, lead, no_end, false);
+  ASSERT_EQ(all.samples_over_water, r.t.size());
+  EXPECT_NEAR(all.results["critical_velocity_m_per_s"].get<double>(), vc * std::sqrt(0.9), kTolerance);
+  EXPECT_TRUE(all.results["water_end_x_m"].is_null());
+  // The water ends where the rim is at 10 m/s: x = 10^2 ramp / (2 top).
+  const double end = 100.0 * ramp / (2 * top) + lead;
+  const auto cut = tyre_fe::read_hydroplaning(samples, load, last_x, lead, end, false);
+  EXPECT_TRUE(cut.results["critical_velocity_m_per_s"].is_null());
+  EXPECT_NEAR(cut.results["reached_the_end_of_the_water_at_speed_m_per_s"].get<double>(), 10.0, 28.0 * 6e-6 / 0.4);
+  EXPECT_EQ(cut.water_lift_N.size(), cut.samples_over_water);
 }
 
 TEST(Hydroplaning, MismatchedSeriesAndABadLoadAreRefused) {

@@ -118,8 +118,6 @@ class TyreRun final : public cosim::Participant {
   // (road_share_vs_speed.csv) and the speeds where it falls below 50, 25 and 10 %.
   void report_hydroplaning(nlohmann::json& results);
   void rejoin_terrain(const cosim::CheckpointReader& in, double own_dt_s);
-  // The road has carried less than the criterion's share (trailing mean) for kAfloatHold_s.
-  bool afloat_now();
   // Where the water ends along x (infinite: no terrain blocks) and how far
   // ahead of the rim the tread meets the water surface.
   struct WaterEnd {
@@ -153,8 +151,7 @@ class TyreRun final : public cosim::Participant {
         &r.next_csv_, &r.stage_t0_, &r.stage_t_end_, &r.max_kinetic_, &r.growth_integral_, &r.growth_time_,
         &r.growth_min_, &r.growth_max_, &r.radius0_, &r.load_, &r.load_ramp_, &r.loading_start_,
         &r.previous_kinetic_, &r.slow_since_, &r.spin_up_radius_, &r.t_window_, &r.average_window_, &r.x_w_, &r.a_w_,
-        &r.fx_sum_, &r.rim_fx_sum_, &r.m_sum_, &r.fz_sum_, &r.h_sum_, &r.w_sum_, &r.road_fz_sum_, &r.road_area_sum_,
-        &r.trail_sum_, &r.below_since_};
+        &r.fx_sum_, &r.rim_fx_sum_, &r.m_sum_, &r.fz_sum_, &r.h_sum_, &r.w_sum_, &r.road_fz_sum_, &r.road_area_sum_};
   }
 
   const cosim::LoadedScene& loaded_;
@@ -192,13 +189,8 @@ class TyreRun final : public cosim::Participant {
   double road_fz_sum_ = 0, road_area_sum_ = 0;  // a road under the terrain
   // A road under the terrain: the rolling stage's road force and water lift
   // against the speed, every step (hydroplaning.hpp).
-  std::vector<double> ramp_t_, ramp_v_, ramp_road_fz_, ramp_lift_fz_;
-  bool hydroplaning_curve_ = false;
-  // Afloat: the trailing mean of the road force (its first sample, its sum) and
-  // since when it has been below the criterion.
-  std::size_t trail_begin_ = 0;
-  double trail_sum_ = 0.0, below_since_ = 0.0;
-  bool afloat_ = false;
+  HydroplaningSamples hydroplaning_;
+  bool hydroplaning_curve_ = false, afloat_ = false;
   long n_w_ = 0;
   bool in_window_ = false;
   // Coupled run.
@@ -312,11 +304,8 @@ void TyreRun::save(cosim::CheckpointWriter& out) const {
   out.put("run.doubles", d);
   out.put("run.counters", std::vector<std::uint64_t>{std::uint64_t(stage_), stage_begun_, stage_done_, at_rest_,
                                                      at_max_steps_, hydroplaning_curve_, afloat_, in_window_,
-                                                     trail_begin_, std::uint64_t(n_w_)});
-  out.put("run.ramp_t", ramp_t_);
-  out.put("run.ramp_v", ramp_v_);
-  out.put("run.ramp_road_fz", ramp_road_fz_);
-  out.put("run.ramp_lift_fz", ramp_lift_fz_);
+                                                     std::uint64_t(n_w_)});
+  hydroplaning_.save(out);
   if (joined_) save_terrain_coupling(s_.terrain, window_s_, out);
 }
 
@@ -327,16 +316,13 @@ void TyreRun::restore(const cosim::CheckpointReader& in) {
   const auto d = in.get<double>("run.doubles", run_doubles(*this).size());
   std::size_t k = 0;
   for (double* v : run_doubles(*this)) *v = d[k++];
-  const auto c = in.get<std::uint64_t>("run.counters", 10);
+  const auto c = in.get<std::uint64_t>("run.counters", 9);
   if (c[0] > kDone) throw cosim::Error(in.path() + ": run.counters: stage " + std::to_string(c[0]) + " unknown");
   stage_ = static_cast<Stage>(c[0]);
   stage_begun_ = c[1], stage_done_ = c[2], at_rest_ = c[3], at_max_steps_ = c[4];
   hydroplaning_curve_ = c[5], afloat_ = c[6], in_window_ = c[7];
-  trail_begin_ = c[8], n_w_ = static_cast<long>(c[9]);
-  ramp_t_ = in.get<double>("run.ramp_t");
-  ramp_v_ = in.get<double>("run.ramp_v", ramp_t_.size());
-  ramp_road_fz_ = in.get<double>("run.ramp_road_fz", ramp_t_.size());
-  ramp_lift_fz_ = in.get<double>("run.ramp_lift_fz", ramp_t_.size());
+  n_w_ = static_cast<long>(c[8]);
+  hydroplaning_.restore(in);
   if (port_ && in.has("coupling.exchange")) rejoin_terrain(in, own_dt);
 }
 
@@ -561,9 +547,8 @@ bool TyreRun::each_step() {
     }
     case kRolling:
       if (road_under_terrain()) {
-        ramp_t_.push_back(s_.time_s), ramp_v_.push_back(s_.rim.vx);
-        ramp_road_fz_.push_back(s_.road.force_z_N), ramp_lift_fz_.push_back(s_.terrain.load_totals.force_N[2]);
-        if (t_.stages().end_rolling_when_afloat() && afloat_now()) {
+        hydroplaning_.add(s_.time_s, s_.rim.vx, s_.road.force_z_N, s_.terrain.load_totals.force_N[2]);
+        if (t_.stages().end_rolling_when_afloat() && hydroplaning_.afloat(load_)) {
           afloat_ = true;
           return true;
         }
@@ -680,14 +665,6 @@ void TyreRun::end_stage() {
   stage_begun_ = false;
 }
 
-bool TyreRun::afloat_now() {
-  trail_sum_ += ramp_road_fz_.back();
-  while (ramp_t_[trail_begin_] < s_.time_s - kHydroplaningFilter_s) trail_sum_ -= ramp_road_fz_[trail_begin_++];
-  const double share = trail_sum_ / double(ramp_t_.size() - trail_begin_) / load_;
-  if (share >= kHydroplaningRoadShare || ramp_t_.size() == 1) below_since_ = s_.time_s;
-  return s_.time_s - below_since_ >= kAfloatHold_s;
-}
-
 TyreRun::WaterEnd TyreRun::water_end() const {
   // The reading ends where the tread reaches the downstream end of the water
   // (the scene's terrain blocks): beyond it the tyre lands on the bare road.
@@ -711,39 +688,18 @@ bool TyreRun::past_the_water() const {
 
 void TyreRun::report_hydroplaning(nlohmann::json& results) {
   const WaterEnd end = water_end();
-  const double water_end_x = end.x_m, lead = end.tread_lead_m;
-  const std::size_t n = samples_over_water(ramp_t_, ramp_v_, s_.rim.x, lead, water_end_x);
-  if (n < 2) return;
-  auto first_n = [n](const std::vector<double>& v) { return std::vector<double>(v.begin(), v.begin() + long(n)); };
-  const std::vector<double> times = first_n(ramp_t_);
-  const RoadShareCurve curve =
-      road_share_curve(times, first_n(ramp_v_), first_n(ramp_road_fz_), load_, kHydroplaningFilter_s);
-  const std::vector<double> lift = cosim::centred_moving_mean(times, first_n(ramp_lift_fz_), kHydroplaningFilter_s);
+  const HydroplaningReading r = read_hydroplaning(hydroplaning_, load_, s_.rim.x, end.tread_lead_m, end.x_m, afloat_);
+  if (r.samples_over_water < 2) return;
   auto* csv = &record_->series("road_share_vs_speed.csv",
                                {"time_s", "speed_m_per_s", "road_force_N", "water_lift_N", "road_share"});
-  double next = 0.0, least = 1e30;
-  for (std::size_t i = 0; i < curve.time_s.size(); ++i) {
-    least = std::min(least, curve.road_share[i]);
-    if (curve.time_s[i] < next && i + 1 < curve.time_s.size()) continue;
-    csv->row({curve.time_s[i], curve.speed_m_per_s[i], curve.road_share[i] * load_, lift[i], curve.road_share[i]});
-    next = curve.time_s[i] + csv_interval_;
+  const RoadShareCurve& c = r.curve;
+  double next = 0.0;
+  for (std::size_t i = 0; i < c.time_s.size(); ++i) {
+    if (c.time_s[i] < next && i + 1 < c.time_s.size()) continue;
+    csv->row({c.time_s[i], c.speed_m_per_s[i], c.road_share[i] * load_, r.water_lift_N[i], c.road_share[i]});
+    next = c.time_s[i] + csv_interval_;
   }
-  auto speed = [&](double share) {
-    const double v = speed_below_road_share(curve, share, kHydroplaningFilter_s);
-    return std::isnan(v) ? nlohmann::json() : nlohmann::json(v);
-  };
-  results["hydroplaning"] = {
-      {"critical_velocity_m_per_s", speed(kHydroplaningRoadShare)},
-      {"criterion", "the road carries less than " + cosim::number_text(100 * kHydroplaningRoadShare) +
-                        " % of the wheel load from this speed on (" + cosim::number_text(1e3 * kHydroplaningFilter_s) +
-                        " ms centred mean); null: not reached"},
-      {"speed_below_road_share_m_per_s", {{"50_percent", speed(0.5)}, {"25_percent", speed(0.25)}, {"10_percent", speed(0.1)}}},
-      {"least_road_share", least},
-      {"ended_afloat", afloat_},
-      {"top_speed_m_per_s", curve.speed_m_per_s.back()},
-      {"water_end_x_m", std::isfinite(water_end_x) ? nlohmann::json(water_end_x) : nlohmann::json()},
-      {"tread_lead_at_surface_m", lead},
-      {"reached_the_end_of_the_water_at_speed_m_per_s", n < ramp_t_.size() ? nlohmann::json(ramp_v_[n]) : nlohmann::json()}};
+  results["hydroplaning"] = r.results;
   hydroplaning_curve_ = true;
 }
 

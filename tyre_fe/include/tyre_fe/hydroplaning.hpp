@@ -8,6 +8,13 @@
 #include <cstddef>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+namespace cosim {
+class CheckpointWriter;
+class CheckpointReader;
+}  // namespace cosim
+
 namespace tyre_fe {
 
 // The road's share of the wheel load against the speed, per sample.
@@ -52,5 +59,44 @@ inline constexpr double kHydroplaningFilter_s = 0.005;
 // trailing 5 ms mean, for this long [s]: six times the filter, about two
 // footprint lengths of road at 14 m/s.
 inline constexpr double kAfloatHold_s = 0.03;
+
+// The rolling stage's record of a tyre on a road under water: every step the
+// rim's forward speed, the road's vertical force on the tyre and the water's.
+// It also watches whether the tyre is afloat, from the samples so far.
+class HydroplaningSamples {
+ public:
+  void add(double time_s, double speed_m_per_s, double road_force_z_N, double water_lift_z_N);
+  // After add: the road has carried less than kHydroplaningRoadShare of the
+  // load, as a trailing kHydroplaningFilter_s mean (the centred mean of the
+  // reading needs samples not yet taken), for kAfloatHold_s.
+  bool afloat(double wheel_load_N);
+  std::size_t size() const { return time_s_.size(); }
+  const std::vector<double>& time_s() const { return time_s_; }
+  const std::vector<double>& speed_m_per_s() const { return speed_; }
+  const std::vector<double>& road_force_z_N() const { return road_; }
+  const std::vector<double>& water_lift_z_N() const { return lift_; }
+  // A checkpoint's records "hydroplaning.*"; restore throws cosim::Error naming the file.
+  void save(cosim::CheckpointWriter& out) const;
+  void restore(const cosim::CheckpointReader& in);
+
+ private:
+  std::vector<double> time_s_, speed_, road_, lift_;
+  // The trailing mean's first sample and sum; since when it has been below the criterion.
+  std::size_t trail_begin_ = 0;
+  double trail_sum_ = 0.0, below_since_ = 0.0;
+};
+
+// What a run reads from its samples: those taken before the tread's leading
+// edge reached the water's end (samples_over_water), as the road's share
+// curve and the water's lift (both kHydroplaningFilter_s centred means).
+struct HydroplaningReading {
+  std::size_t samples_over_water = 0;  // fewer than 2: nothing to read
+  RoadShareCurve curve;
+  std::vector<double> water_lift_N;
+  nlohmann::json results;  // the run's results.hydroplaning
+};
+// water_end_x_m infinite: water to the end of the run.
+HydroplaningReading read_hydroplaning(const HydroplaningSamples& samples, double wheel_load_N, double last_rim_x_m,
+                                      double tread_lead_m, double water_end_x_m, bool ended_afloat);
 
 }  // namespace tyre_fe
