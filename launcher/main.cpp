@@ -1,7 +1,7 @@
 // cosim: run a scene with the participants it needs, check a scene, run a study.
 //   cosim run SCENE --out DIR [--set field.path=value ...] [--restart] [--restart-on-failure N]
 //   cosim check SCENE [--set ...]
-//   cosim study STUDY --out DIR [--pass NAME] [--resume] [--tabulate]
+//   cosim study STUDY --out DIR [--pass NAME] [--case LABEL]... [--resume] [--tabulate]
 //   cosim monitor [--dds fast|cyclone] [--domain N] [--interface IF] [--peer ADDR ...] [--csv FILE] [--security DIR]
 #include <cstdio>
 #include <string>
@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   check_cmd->add_option("scene", check_file, "scene file")->required();
   check_cmd->add_option("--set", check_sets, "override a scene field");
   std::string study_file, study_out, study_pass;
+  std::vector<std::string> study_cases;
   bool study_no_vtk = false, study_resume = false, study_tabulate = false;
   auto* study_cmd = app.add_subcommand("study", "run a study (several cases) and tabulate");
   study_cmd->add_option("study", study_file, "study file")->required();
@@ -53,6 +54,8 @@ int main(int argc, char** argv) {
                       "run nothing: write the tables, plots and report.html from the runs completed in --out");
   study_cmd->add_option("--pass", study_pass,
                         "run one resolution pass of the study (e.g. coarse or fine); the tables join every pass completed in --out");
+  study_cmd->add_option("--case", study_cases,
+                        "run only this case (repeatable); the cases it depends on must be given too or completed in --out");
   cosim::MonitorOptions monitor;
   std::string monitor_vendor = "cyclone", monitor_run_id;
   std::vector<std::string> monitor_peers;
@@ -98,7 +101,7 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(r.samples));
       return 0;
     }
-    return cosim::run_study({study_file, study_out, study_no_vtk, study_resume, study_pass, study_tabulate});
+    return cosim::run_study({study_file, study_out, study_no_vtk, study_resume, study_pass, study_tabulate, study_cases});
   } catch (const cosim::Error& e) {
     std::fprintf(stderr, "cosim: error: %s\n", e.what());
     return 2;

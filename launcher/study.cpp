@@ -1,5 +1,6 @@
 #include "study.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -135,7 +136,8 @@ std::vector<std::string> case_sets(const std::vector<scene::StudyCase>& cases, i
   const auto& k = cases[c];
   std::vector<std::string> sets(k.set().begin(), k.set().end());
   auto missing = [&](const std::string& label, const std::string& result) {
-    return Error("study case '" + k.label() + "': case '" + label + "' has no result '" + result + "'");
+    return Error("study case '" + k.label() + "': case '" + label + "' has no result '" + result +
+                 "' (not completed in this pass: run it too, or give it with --case)");
   };
   for (const auto& d : k.derived()) {
     double value = 1.0;
@@ -306,6 +308,17 @@ void run_pass(const StudyPlan& plan, const scene::StudyPass& pass, const StudyRe
   const int n = static_cast<int>(plan.cases.size());
   for (int c = 0; c < n; ++c) {
     const auto& k = plan.cases[c];
+    const auto& only = request.cases;
+    if (!only.empty() && std::find(only.begin(), only.end(), k.label()) == only.end()) {
+      // Not to be run: its completed run in DIR, if any, for the cases that depend on it.
+      try {
+        const std::string dir = pass_dir(request.out_dir, pass) + "/" + k.label();
+        summaries[c] = completed_before(dir, *load_scene(plan.scene_file, pass_case_sets(plan, pass, c, &summaries)));
+      } catch (const Error&) {
+        // an earlier case it depends on has not completed either
+      }
+      continue;
+    }
     RunRequest run{plan.scene_file, pass_dir(request.out_dir, pass) + "/" + k.label(),
                    pass_case_sets(plan, pass, c, &summaries), false, request.no_vtk};
     const auto scene = load_scene(plan.scene_file, run.sets);
@@ -363,6 +376,12 @@ int run_study(const StudyRequest& request) {
   const auto& s = study->message;
   StudyPlan plan{s, expand_cases(s), request.study_file, folder_of(request.study_file) + "/" + s.scene()};
   validate_study(s, plan.cases, study->locator(), request.pass);
+  for (const auto& label : request.cases)
+    if (case_index(plan.cases, label) < 0) {
+      std::string labels;
+      for (const auto& k : plan.cases) labels += " " + k.label();
+      throw Error(request.study_file + ": --case " + label + ": the study's cases are" + labels);
+    }
   make_folder(request.out_dir);
   plan.coupled = load_scene(plan.scene_file, {})->message.has_coupling();
   // Validate every case of every pass before running any.

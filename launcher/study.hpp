@@ -51,6 +51,9 @@ struct StudyRequest {
   std::string pass;  // "": every pass of the study, in order
   // Run nothing: write the tables, plots and report from the runs completed in out_dir.
   bool tabulate_only = false;
+  // Run only these cases (labels; empty: all). A case they depend on (a
+  // derived field, a rolling radius) must be among them or completed in DIR.
+  std::vector<std::string> cases;
 };
 // Runs the cases of a study (of one pass or of all) and writes, from every run
 // completed in DIR (so a pass run later joins the earlier one's): table.csv,

@@ -122,9 +122,23 @@ void write_table(const StudyOutputs& o, const std::vector<StudyRow>& rows, const
   }
 }
 
+// The reference of a run in a study with passes: the same case's run in the
+// latest pass after its own that completed (a medium pass run for a few cases
+// is the coarse pass's reference where the fine one is not run); the last
+// pass's runs are their own. nullptr: no finer run of the case.
+const StudyRow* finer_run(const std::vector<std::string>& passes, const std::vector<StudyRow>& rows,
+                          const StudyRow& r) {
+  const auto index = [&](const std::string& pass) { return std::find(passes.begin(), passes.end(), pass) - passes.begin(); };
+  if (r.pass == passes.back()) return &r;
+  const StudyRow* best = nullptr;
+  for (const auto& f : rows)
+    if (f.label == r.label && index(f.pass) > index(r.pass) && (!best || index(f.pass) > index(best->pass))) best = &f;
+  return best;
+}
+
 // error_vs_runtime.csv: each reported quantity of each run against the
-// reference: the finest pass's run of the same case (a study with passes), or
-// the study's reference (one pass).
+// reference: the finest later pass's run of the same case (finer_run; a study
+// with passes), or the study's reference (one pass).
 void write_error_vs_runtime(const StudyOutputs& o, const std::vector<StudyRow>& rows) {
   const auto& s = o.study;
   const auto passes = pass_names(s);
@@ -132,19 +146,17 @@ void write_error_vs_runtime(const StudyOutputs& o, const std::vector<StudyRow>& 
   std::ofstream out(o.out_dir + "/error_vs_runtime.csv");
   out << "case,quantity,pass,value,wall_time_s,reference_pass,reference,relative_error\n";
   for (const auto& r : rows) {
-    const StudyRow* finest = nullptr;
-    if (passes.size() > 1)
-      for (const auto& f : rows)
-        if (f.pass == passes.back() && f.label == r.label) finest = &f;
+    const StudyRow* finer = passes.size() > 1 ? finer_run(passes, rows, r) : nullptr;
+    const std::string reference_pass =
+        passes.size() == 1 ? "reference" : finer ? finer->pass : passes.back() + " (not run)";
     for (const auto& q : quantities) {
       const double v = row_number(r, q);
       double ref = kNaN;
-      if (passes.size() > 1) ref = finest ? row_number(*finest, q) : kNaN;
+      if (passes.size() > 1) ref = finer ? row_number(*finer, q) : kNaN;
       else if (q == field_column(s.result_field())) ref = reference_for(s, rows, r.pass);
       const double error = ref != 0 && !std::isnan(ref) ? (v - ref) / std::fabs(ref) : kNaN;
       out << field(r.label) << "," << q << "," << r.pass << "," << num(v) << "," << num(row_number(r, "wall_time_s"))
-          << "," << (passes.size() > 1 ? passes.back() + (finest ? "" : " (not run)") : "reference") << ","
-          << num(ref) << "," << num(error) << "\n";
+          << "," << reference_pass << "," << num(ref) << "," << num(error) << "\n";
     }
   }
 }
@@ -188,20 +200,18 @@ std::string plot_pass_errors(const StudyOutputs& o, const std::vector<StudyRow>&
     out << "wall_time_s,abs_difference_percent\n";
     int n = 0;
     for (const auto& r : rows) {
-      if (r.pass == passes.back()) continue;
-      for (const auto& f : rows)
-        if (f.pass == passes.back() && f.label == r.label) {
-          const double v = row_number(r, q), ref = row_number(f, q);
-          if (ref == 0 || std::isnan(ref) || std::isnan(v)) continue;
-          out << num(row_number(r, "wall_time_s")) << "," << num(100 * std::fabs((v - ref) / ref)) << "\n", ++n;
-        }
+      const StudyRow* f = finer_run(passes, rows, r);
+      if (!f || f == &r) continue;
+      const double v = row_number(r, q), ref = row_number(*f, q);
+      if (ref == 0 || std::isnan(ref) || std::isnan(v)) continue;
+      out << num(row_number(r, "wall_time_s")) << "," << num(100 * std::fabs((v - ref) / ref)) << "\n", ++n;
     }
     if (n) curves.push_back({data, "1:2", "points pt 7 ps 1.3", q});
   }
   if (curves.empty()) return "";
   PlotOptions p;
-  p.title = s.name() + ": " + passes.front() + " pass against " + passes.back() + " pass";
-  p.x_label = "wall time of the " + passes.front() + " run [s]", p.y_label = "|difference| from the " + passes.back() + " run [%]";
+  p.title = s.name() + ": each run against its case's run in the finest later pass";
+  p.x_label = "wall time of the run [s]", p.y_label = "|difference| from the finer run [%]";
   p.log_x = true, p.log_y = true;
   const std::string png = o.out_dir + "/error_vs_runtime.png";
   return plot_png(png, p, curves) ? "error_vs_runtime.png" : "";

@@ -41,9 +41,24 @@ TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_EQ(count(read(dir + "/table.csv"), "\n"), 3u) << "header and the coarse pass's two runs";
   EXPECT_NE(read(dir + "/error_vs_runtime.csv").find(",fine (not run),"), std::string::npos);
-  std::tie(code, out) = shell(study + " --pass fine");
+  // One case of the fine pass (--case): the coarse run of that case has its
+  // reference, the other's still has none.
+  std::tie(code, out) = shell(study + " --pass fine --case 5ms");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(out.find("'10ms'"), std::string::npos) << "--case 5ms ran the other case: " << out;
+  std::string errors = read(dir + "/error_vs_runtime.csv");
+  EXPECT_NE(errors.find("10ms,final_front_m,coarse,"), std::string::npos) << errors;
+  EXPECT_NE(errors.find(",fine (not run),"), std::string::npos) << errors;
+  EXPECT_TRUE(std::regex_search(errors, std::regex("\n5ms,final_front_m,coarse,[^,]+,[^,]+,fine,[0-9.e-]+,")))
+      << errors;
+  std::tie(code, out) = shell(study + " --pass fine --resume");
   ASSERT_EQ(code, 0) << out;
   EXPECT_EQ(out.find("pass 'coarse'"), std::string::npos) << "--pass fine ran the coarse pass: " << out;
+  EXPECT_NE(out.find("'5ms' completed before"), std::string::npos) << out;
+  EXPECT_EQ(read(dir + "/error_vs_runtime.csv").find("(not run)"), std::string::npos);
+  std::tie(code, out) = shell(study + " --case 20ms");
+  EXPECT_NE(code, 0);
+  EXPECT_NE(out.find("--case 20ms: the study's cases are 5ms 10ms"), std::string::npos) << out;
   // --tabulate runs nothing and rewrites the same table.
   const std::string before = read(dir + "/table.csv");
   std::filesystem::remove(dir + "/table.csv");
@@ -66,7 +81,7 @@ TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
   EXPECT_NE(checks.substr(coarse_check, checks.find('\n', coarse_check) - coarse_check).find(",yes,"), std::string::npos)
       << checks;
   EXPECT_TRUE(std::filesystem::exists(dir + "/coarse_front_vs_time.png"));
-  const std::string errors = read(dir + "/error_vs_runtime.csv");
+  errors = read(dir + "/error_vs_runtime.csv");
   EXPECT_NE(errors.find("5ms,final_front_m,coarse,"), std::string::npos) << errors;
 
   if (std::system("command -v chromium >/dev/null 2>&1") != 0)
