@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
   study_cmd->add_option("--pass", study_pass,
                         "run one resolution pass of the study (e.g. coarse or fine); the tables join every pass completed in --out");
   study_cmd->add_option("--case", study_cases,
-                        "run only this case (repeatable); the cases it depends on must be given too or completed in --out");
+                        "run only this case (repeatable); the cases it depends on must be given too "
+                        "or completed in --out");
   cosim::MonitorOptions monitor;
   std::string monitor_vendor = "cyclone", monitor_run_id;
   std::vector<std::string> monitor_peers;
@@ -101,7 +102,8 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(r.samples));
       return 0;
     }
-    return cosim::run_study({study_file, study_out, study_no_vtk, study_resume, study_pass, study_tabulate, study_cases});
+    return cosim::run_study(
+        {study_file, study_out, study_no_vtk, study_resume, study_pass, study_tabulate, study_cases});
   } catch (const cosim::Error& e) {
     std::fprintf(stderr, "cosim: error: %s\n", e.what());
     return 2;

@@ -128,7 +128,9 @@ void write_table(const StudyOutputs& o, const std::vector<StudyRow>& rows, const
 // pass's runs are their own. nullptr: no finer run of the case.
 const StudyRow* finer_run(const std::vector<std::string>& passes, const std::vector<StudyRow>& rows,
                           const StudyRow& r) {
-  const auto index = [&](const std::string& pass) { return std::find(passes.begin(), passes.end(), pass) - passes.begin(); };
+  const auto index = [&](const std::string& pass) {
+    return std::find(passes.begin(), passes.end(), pass) - passes.begin();
+  };
   if (r.pass == passes.back()) return &r;
   const StudyRow* best = nullptr;
   for (const auto& f : rows)
