@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "cosim/scene_io.hpp"
 #include "snow_sph/mdpc.hpp"
+#include "test_support.hpp"
 
 using snow_sph::MdpcParameters;
 using Mat3 = Eigen::Matrix3d;
@@ -605,5 +607,32 @@ TEST(Mdpc, DrainedTriaxialCompressionFailsAtTheMohrCoulombStressItIsMatchedTo) {
     std::printf("[triaxial, sigma_3 %.0f Pa] Mohr-Coulomb q_f %.1f Pa; triaxial-matched cone %.1f; Table 3.1 cone %.1f (%.1f %%)\n",
                 t.confining_Pa, sigma1 - t.confining_Pa, t.peak_q_Pa, weaker.peak_q_Pa,
                 100.0 * (weaker.peak_q_Pa / (sigma1 - t.confining_Pa) - 1.0));
+  }
+}
+
+// The shipped triaxial-matched snows (configs/materials/snow_*_triaxial.textproto)
+// follow from their presets (Table 3.1's soft snow, section 6.3's hard snow) by
+// the formulas of the test above and nothing else: the preset's cone inverted to
+// Mohr-Coulomb phi and c (plane strain), re-matched in triaxial compression, and
+// every other field equal. Tolerances: the files give beta to 0.001 deg and d to
+// 1 Pa (half a unit of their last digit).
+TEST(Mdpc, TriaxialMatchedSnowFilesFollowFromTheirPresets) {
+  for (const std::string snow : {"soft", "hard"}) {
+    const std::string dir = test_support::source_dir() + "/configs/materials/";
+    cosim::scene::Material preset, matched;
+    cosim::parse_text_file(dir + "snow_" + snow + ".textproto", preset, nullptr);
+    cosim::parse_text_file(dir + "snow_" + snow + "_triaxial.textproto", matched, nullptr);
+    const double T = std::tan(preset.snow().friction_angle_deg() * M_PI / 180.0);
+    const double tan_phi = 3.0 * T / std::sqrt(27.0 - 12.0 * T * T);
+    const double c = preset.snow().cohesion_pa() * std::sqrt(9.0 + 12.0 * tan_phi * tan_phi) / (3.0 * std::sqrt(3.0));
+    const double sin_phi = std::sin(std::atan(tan_phi)), cos_phi = std::cos(std::atan(tan_phi));
+    EXPECT_NEAR(matched.snow().friction_angle_deg(), std::atan(6.0 * sin_phi / (3.0 - sin_phi)) * 180.0 / M_PI, 5e-4)
+        << snow;
+    EXPECT_NEAR(matched.snow().cohesion_pa(), 6.0 * c * cos_phi / (3.0 - sin_phi), 0.5) << snow;
+    cosim::scene::Material rest = matched;
+    rest.mutable_snow()->set_friction_angle_deg(preset.snow().friction_angle_deg());
+    rest.mutable_snow()->set_cohesion_pa(preset.snow().cohesion_pa());
+    rest.mutable_snow()->set_source(preset.snow().source());
+    EXPECT_EQ(rest.SerializeAsString(), preset.SerializeAsString()) << snow << ": a field besides the cone differs";
   }
 }
