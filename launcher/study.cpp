@@ -244,6 +244,17 @@ std::vector<std::string> pass_case_sets(const StudyPlan& plan, const scene::Stud
   return sets;
 }
 
+// The case's scene in the pass, given the pass's summaries so far; nullptr
+// while an earlier case it takes results from has not completed.
+std::unique_ptr<LoadedScene> case_scene(const StudyPlan& plan, const scene::StudyPass& pass, int c,
+                                        const std::vector<nlohmann::json>& summaries) {
+  try {
+    return load_scene(plan.scene_file, pass_case_sets(plan, pass, c, &summaries));
+  } catch (const Error&) {
+    return nullptr;
+  }
+}
+
 // Every completed run of the pass in DIR, as rows (cases whose earlier cases
 // are missing are left out), with the computed slip ratio.
 void gather_pass(const StudyPlan& plan, const scene::StudyPass& pass, const std::string& out_dir,
@@ -253,12 +264,8 @@ void gather_pass(const StudyPlan& plan, const scene::StudyPass& pass, const std:
   std::vector<double> speed(plan.cases.size(), 0.0);
   const std::size_t first = rows.size();
   for (std::size_t c = 0; c < plan.cases.size(); ++c) {
-    std::unique_ptr<LoadedScene> scene;
-    try {
-      scene = load_scene(plan.scene_file, pass_case_sets(plan, pass, static_cast<int>(c), &summaries));
-    } catch (const Error&) {
-      continue;  // an earlier case it depends on has not completed
-    }
+    const auto scene = case_scene(plan, pass, static_cast<int>(c), summaries);
+    if (!scene) continue;
     summaries[c] = completed_before(pass_dir(out_dir, pass) + "/" + plan.cases[c].label(), *scene);
     if (summaries[c].is_null()) continue;
     speed[c] = scene->message.tyre().rim().forward_speed_m_per_s();
@@ -311,12 +318,8 @@ void run_pass(const StudyPlan& plan, const scene::StudyPass& pass, const StudyRe
     const auto& only = request.cases;
     if (!only.empty() && std::find(only.begin(), only.end(), k.label()) == only.end()) {
       // Not to be run: its completed run in DIR, if any, for the cases that depend on it.
-      try {
-        const std::string dir = pass_dir(request.out_dir, pass) + "/" + k.label();
-        summaries[c] = completed_before(dir, *load_scene(plan.scene_file, pass_case_sets(plan, pass, c, &summaries)));
-      } catch (const Error&) {
-        // an earlier case it depends on has not completed either
-      }
+      if (const auto scene = case_scene(plan, pass, c, summaries))
+        summaries[c] = completed_before(pass_dir(request.out_dir, pass) + "/" + k.label(), *scene);
       continue;
     }
     RunRequest run{plan.scene_file, pass_dir(request.out_dir, pass) + "/" + k.label(),

@@ -62,13 +62,14 @@ std::size_t samples_over_water(const std::vector<double>& t, const std::vector<d
 void HydroplaningSamples::add(double time_s, double speed_m_per_s, double road_force_z_N, double water_lift_z_N) {
   time_s_.push_back(time_s), speed_.push_back(speed_m_per_s);
   road_.push_back(road_force_z_N), lift_.push_back(water_lift_z_N);
+  // The trailing mean's window moves with every sample, whether or not afloat() is asked.
+  trail_sum_ += road_force_z_N;
+  while (time_s_[trail_begin_] < time_s - kHydroplaningFilter_s) trail_sum_ -= road_[trail_begin_++];
 }
 
 bool HydroplaningSamples::afloat(double wheel_load_N) {
   if (time_s_.empty()) return false;
   const double now = time_s_.back();
-  trail_sum_ += road_.back();
-  while (time_s_[trail_begin_] < now - kHydroplaningFilter_s) trail_sum_ -= road_[trail_begin_++];
   const double share = trail_sum_ / double(time_s_.size() - trail_begin_) / wheel_load_N;
   if (share >= kHydroplaningRoadShare || time_s_.size() == 1) below_since_ = now;
   return now - below_since_ >= kAfloatHold_s;

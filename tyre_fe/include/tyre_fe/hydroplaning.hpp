@@ -68,7 +68,9 @@ class HydroplaningSamples {
   void add(double time_s, double speed_m_per_s, double road_force_z_N, double water_lift_z_N);
   // After add: the road has carried less than kHydroplaningRoadShare of the
   // load, as a trailing kHydroplaningFilter_s mean (the centred mean of the
-  // reading needs samples not yet taken), for kAfloatHold_s.
+  // reading needs samples not yet taken), for kAfloatHold_s. Asked after every
+  // add (it keeps when the share last stood at the criterion); asking twice
+  // for one sample gives the same answer.
   bool afloat(double wheel_load_N);
   std::size_t size() const { return time_s_.size(); }
   const std::vector<double>& time_s() const { return time_s_; }
