@@ -267,6 +267,9 @@ int run_coupled(const RunRequest& request, const LoadedScene& scene) {
     print_force_means(results_json, performance, summary);
     std::printf("%s", reference_lines(summary.value("comparison", nlohmann::json())).c_str());
   }
+  // A study prints its progress to stderr between runs; stdout redirected to the same
+  // file is block-buffered, so without this a run's results land inside the next run's lines.
+  std::fflush(stdout);
   return code;
 }
 

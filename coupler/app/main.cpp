@@ -14,13 +14,8 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"coupler: keeps tyre_fe and the terrain in step, decides friction, decomposes the contact force"};
-  std::string scene_file, out_dir = "out";
-  std::vector<std::string> sets;
-  bool quiet = false;
-  app.add_option("scene", scene_file, "scene file (.textproto)")->required();
-  app.add_option("--out", out_dir, "output folder");
-  app.add_option("--set", sets, "override a scene field: field.path=value");
-  app.add_flag("--quiet", quiet, "no progress line");
+  cosim::coupling::SceneCli cli;
+  cli.add_to(app, false);
   cosim::coupling::RestartCli restart;
   restart.add_to(app);
   cosim::coupling::CouplingCli coupling;
@@ -28,12 +23,14 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
   try {
-    const auto scene = cosim::load_scene(scene_file, sets);
+    const auto scene = cosim::load_scene(cli.scene_file, cli.sets);
     if (!cosim::has_fe_body(scene->message) || !scene->message.has_sph())
-      throw cosim::Error(scene_file + ": the coupler needs a scene with a `tyre` (or a `tread_block`) and an `sph` terrain");
+      throw cosim::Error(cli.scene_file +
+                         ": the coupler needs a scene with a `tyre` (or a `tread_block`) and an `sph` terrain");
     cosim::coupling::Session session(coupling.session(cosim::transport::Role::coupler, scene->message));
     try {
-      const auto summary = coupler::run_hub(session, *scene, {out_dir, quiet, restart.requested(), restart.step()});
+      const auto summary =
+          coupler::run_hub(session, *scene, {cli.out_dir, cli.quiet, restart.requested(), restart.step()});
       std::printf("%s\n", summary["results"].dump(2).c_str());
       return 0;
     } catch (const std::exception& e) {

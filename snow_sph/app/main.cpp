@@ -18,37 +18,27 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"snow_sph: SPH terrain (snow: Drucker-Prager/Cap; water: Us-Up EOS)"};
-  std::string scene_file, out_dir = "out";
-  std::vector<std::string> sets;
-  bool check = false, quiet = false, no_vtk = false;
+  cosim::coupling::SceneCli cli;
+  cli.add_to(app, true);
   cosim::coupling::RestartCli restart;
-  app.add_option("scene", scene_file, "scene file (.textproto)")->required();
-  app.add_option("--out", out_dir, "output folder");
-  app.add_option("--set", sets, "override a scene field: field.path=value");
-  app.add_flag("--check", check, "validate the scene and exit");
-  app.add_flag("--quiet", quiet, "no progress line");
-  app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
   restart.add_to(app);
   cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
   try {
-    const auto scene = snow_sph::load_sph_scene(scene_file, sets);
-    if (check) {
-      std::printf("%s: ok\n", scene_file.c_str());
+    const auto scene = snow_sph::load_sph_scene(cli.scene_file, cli.sets);
+    if (cli.check) {
+      std::printf("%s: ok\n", cli.scene_file.c_str());
       return 0;
     }
-    const std::string terrain = scene->message.coupling().terrain();
-    if (!coupling.coupled && cosim::has_fe_body(scene->message) && scene->message.has_sph() && terrain != "rigid_road")
-      throw cosim::Error(scene_file + ": this scene couples an FE body to an SPH terrain; run it with `cosim run` "
-                         "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
+    coupling.require_whole_run(cli.scene_file, scene->message);
     if (coupling.coupled) {
       if (!cosim::has_fe_body(scene->message))
-        throw cosim::Error(scene_file + ": a coupled terrain needs a scene with a `tyre` or a `tread_block`");
+        throw cosim::Error(cli.scene_file + ": a coupled terrain needs a scene with a `tyre` or a `tread_block`");
       cosim::coupling::Session session(coupling.session(cosim::transport::Role::terrain, scene->message));
       snow_sph::DdsSurfaceExchange exchange(session);
-      snow_sph::RunOptions options{out_dir, quiet, !no_vtk};
+      snow_sph::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk};
       options.exchange = &exchange;
       options.restart = restart.requested(), options.restart_at = restart.step();
       try {
@@ -60,7 +50,7 @@ int main(int argc, char** argv) {
       }
 
     }
-    snow_sph::RunOptions options{out_dir, quiet, !no_vtk};
+    snow_sph::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk};
     options.restart = restart.requested(), options.restart_at = restart.step();
     const auto summary = snow_sph::run_scene(*scene, options);
     cosim::print_results(summary);

@@ -18,40 +18,32 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"tyre_fe: explicit FE tyre (axisymmetric inflation, 3D pitch model, rigid road)"};
-  std::string scene_file, out_dir = "out";
-  std::vector<std::string> sets;
-  bool check = false, quiet = false, no_vtk = false, mesh_only = false;
-  cosim::coupling::RestartCli restart;
-  app.add_option("scene", scene_file, "scene file (.textproto)")->required();
-  app.add_option("--out", out_dir, "output folder");
-  app.add_option("--set", sets, "override a scene field: field.path=value");
-  app.add_flag("--check", check, "validate the scene and exit");
+  cosim::coupling::SceneCli cli;
+  cli.add_to(app, true);
+  bool mesh_only = false;
   app.add_flag("--mesh-only", mesh_only, "write the meshes and their statistics, do not solve");
-  app.add_flag("--quiet", quiet, "no progress line");
-  app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
+  cosim::coupling::RestartCli restart;
   restart.add_to(app);
   cosim::coupling::CouplingCli coupling;
   coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
   try {
-    const auto scene = cosim::load_scene(scene_file, sets);
+    const auto scene = cosim::load_scene(cli.scene_file, cli.sets);
     cosim::ValidationReport report;
     tyre_fe::validate_fe_body_scene(*scene, report);
-    if (!cosim::has_fe_body(scene->message)) report.fail(scene_file, "the scene has no `tyre` or `tread_block` section");
+    if (!cosim::has_fe_body(scene->message))
+      report.fail(cli.scene_file, "the scene has no `tyre` or `tread_block` section");
     report.throw_if_failed();
-    if (check) {
-      std::printf("%s: ok\n", scene_file.c_str());
+    if (cli.check) {
+      std::printf("%s: ok\n", cli.scene_file.c_str());
       return 0;
     }
-    const std::string terrain = scene->message.coupling().terrain();
-    if (!coupling.coupled && cosim::has_fe_body(scene->message) && scene->message.has_sph() && terrain != "rigid_road")
-      throw cosim::Error(scene_file + ": this scene couples the tyre to an SPH terrain; run it with `cosim run` "
-                         "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
+    coupling.require_whole_run(cli.scene_file, scene->message);
     if (coupling.coupled) {
       cosim::coupling::Session session(coupling.session(cosim::transport::Role::tyre, scene->message));
       tyre_fe::DdsTerrainPort port(session);
-      tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
+      tyre_fe::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk, mesh_only};
       options.terrain = &port;
       options.restart = restart.requested(), options.restart_at = restart.step();
       try {
@@ -63,7 +55,7 @@ int main(int argc, char** argv) {
       }
 
     }
-    tyre_fe::RunOptions options{out_dir, quiet, !no_vtk, mesh_only};
+    tyre_fe::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk, mesh_only};
     options.restart = restart.requested(), options.restart_at = restart.step();
     const auto summary = tyre_fe::run_fe_body_scene(*scene, options);
     cosim::print_results(summary);

@@ -55,10 +55,14 @@ nlohmann::json energy_json(const Energies& e) {
 // rolling. A step on a terrain reads, at a coupling window's start,
 //   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate
 // and  compute_forces -> add_terrain_loads -> integrate  on the window's other sub-steps.
-class TyreRun final : public cosim::Participant {
+class TyreRun final : public PortParticipant {
  public:
   TyreRun(const cosim::LoadedScene& loaded, const RunOptions& options)
-      : loaded_(loaded), scene_(loaded.message), t_(scene_.tyre()), options_(options), port_(options.terrain) {}
+      : PortParticipant(options.terrain),
+        loaded_(loaded),
+        scene_(loaded.message),
+        t_(scene_.tyre()),
+        options_(options) {}
 
   double initialize(cosim::RunRecord& record) override;
   bool advance() override;
@@ -66,13 +70,6 @@ class TyreRun final : public cosim::Participant {
   std::uint64_t steps() const override { return s_.step; }
   void output(cosim::RunRecord& record) override;
   void finalize(cosim::RunRecord& record) override;
-  void finish_peers() override {
-    if (port_) port_->finish(false, "");
-  }
-  void abort(const std::string& reason) noexcept override {
-    failed_ = true;
-    report_failure(port_, reason);
-  }
   void plots(cosim::RunRecord& record) override {
     if (stepping_) write_plots(record.out_dir());
     if (hydroplaning_curve_) {
@@ -158,14 +155,13 @@ class TyreRun final : public cosim::Participant {
   const sc::Scene& scene_;
   const sc::TyreModel& t_;
   RunOptions options_;
-  TerrainPort* port_;
   cosim::RunRecord* record_ = nullptr;
   std::unique_ptr<Model3d> model_;
   State3d s_;
   std::unique_ptr<FrameWriter> frames_;
   cosim::CsvWriter* csv_ = nullptr;
   cosim::CsvWriter* road_csv_ = nullptr;  // a road under the terrain only
-  bool stepping_ = false, failed_ = false, at_max_steps_ = false, joined_ = false;
+  bool stepping_ = false, at_max_steps_ = false, joined_ = false;
   double window_s_ = 0.0;  // the coupling window the coupler agreed
   double next_csv_ = 0.0, csv_interval_ = 0.0;
   std::uint64_t max_steps_ = 0;

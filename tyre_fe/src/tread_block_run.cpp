@@ -22,10 +22,10 @@
 namespace tyre_fe {
 namespace {
 
-class TreadBlockRun final : public cosim::Participant {
+class TreadBlockRun final : public PortParticipant {
  public:
   TreadBlockRun(const cosim::LoadedScene& loaded, const RunOptions& options)
-      : loaded_(loaded), options_(options), port_(options.terrain) {}
+      : PortParticipant(options.terrain), loaded_(loaded), options_(options) {}
 
   double initialize(cosim::RunRecord& record) override;
   bool advance() override;
@@ -33,13 +33,6 @@ class TreadBlockRun final : public cosim::Participant {
   std::uint64_t steps() const override { return s_.step; }
   void output(cosim::RunRecord& record) override;
   void finalize(cosim::RunRecord& record) override;
-  void finish_peers() override {
-    if (port_) port_->finish(false, "");
-  }
-  void abort(const std::string& reason) noexcept override {
-    failed_ = true;
-    report_failure(port_, reason);
-  }
   void plots(cosim::RunRecord& record) override {
     if (slide_csv_) {
       record.plot("block_slide.csv", "block_slide_forces.png", 1,
@@ -65,7 +58,6 @@ class TreadBlockRun final : public cosim::Participant {
 
   const cosim::LoadedScene& loaded_;
   RunOptions options_;
-  TerrainPort* port_;
   TreadBlockSetup setup_;
   std::unique_ptr<Model3d> model_;
   State3d s_;
@@ -73,7 +65,6 @@ class TreadBlockRun final : public cosim::Participant {
   cosim::CsvWriter* csv_ = nullptr;
   double end_s_ = 0.0, next_csv_ = 0.0, csv_interval_ = 0.0, exchange_s_ = 0.0;
   double max_force_z_N_ = 0.0;
-  bool failed_ = false;
   cosim::CsvWriter* slide_csv_ = nullptr;
   // Sums over the slide's averaging window: the holder's longitudinal force, the
   // road's and the water's forces, the road's contact area.

@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cosim_coupling/session.hpp"
+#include "cosim/error.hpp"
 #include "cosim/scene_io.hpp"
 
 namespace cosim::coupling {
@@ -27,6 +28,27 @@ namespace cosim::coupling {
   std::fflush(nullptr);
   std::_Exit(2);
 }
+
+// The scene, its overrides, the output folder and the progress line, the same in the
+// three programs; --check and --no-vtk only in the solvers (the coupler writes no VTK
+// and its scene check is the solvers').
+struct SceneCli {
+  std::string scene_file;
+  std::string out_dir = "out";
+  std::vector<std::string> sets;
+  bool check = false;
+  bool quiet = false;
+  bool no_vtk = false;
+
+  void add_to(CLI::App& app, bool solver) {
+    app.add_option("scene", scene_file, "scene file (.textproto)")->required();
+    app.add_option("--out", out_dir, "output folder");
+    app.add_option("--set", sets, "override a scene field: field.path=value");
+    if (solver) app.add_flag("--check", check, "validate the scene and exit");
+    app.add_flag("--quiet", quiet, "no progress line");
+    if (solver) app.add_flag("--no-vtk", no_vtk, "do not write VTK files");
+  }
+};
 
 // --restart and --restart-at, the same in the three programs (docs/reliability.md).
 struct RestartCli {
@@ -66,6 +88,14 @@ struct CouplingCli {
     app.add_option("--security", security_dir,
                    "a secured DDS domain: the folder of scripts/make_test_ca.sh (this process uses its role's "
                    "identity in it); every process of the run must be given one");
+  }
+
+  // A solver started alone on a scene that couples an FE body to an SPH terrain would
+  // run half of it; throws cosim::Error that says how to run the whole.
+  void require_whole_run(const std::string& scene_file, const cosim::scene::Scene& scene) const {
+    if (!coupled && cosim::has_fe_body(scene) && scene.has_sph() && scene.coupling().terrain() != "rigid_road")
+      throw cosim::Error(scene_file + ": this scene couples an FE body to an SPH terrain; run it with `cosim run` "
+                         "(or start tyre_fe, snow_sph and coupler by hand with --coupled, docs/coupling.md)");
   }
 
   // Throws cosim::Error for a bad vendor or run id.

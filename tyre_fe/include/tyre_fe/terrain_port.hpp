@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/participant.hpp"
 #include "cosim/surface_exchange.hpp"
 #include "tyre_fe/model3d.hpp"
 
@@ -66,5 +67,24 @@ class TerrainPort {
 // A run that failed tells its peers through its port, if it has one; never throws
 // (if the message cannot go, the peers learn of the failure by their time-out).
 void report_failure(TerrainPort* port, const std::string& reason) noexcept;
+
+// A tyre_fe participant on a terrain port, or on none (a rigid road): at the run's
+// end it releases its peers, on a failure it tells them why. The tyre and the tread
+// block share this; what they step differs.
+class PortParticipant : public cosim::Participant {
+ public:
+  void finish_peers() override {
+    if (port_) port_->finish(false, "");
+  }
+  void abort(const std::string& reason) noexcept override {
+    failed_ = true;
+    report_failure(port_, reason);
+  }
+
+ protected:
+  explicit PortParticipant(TerrainPort* port) : port_(port) {}
+  TerrainPort* port_;
+  bool failed_ = false;
+};
 
 }  // namespace tyre_fe
