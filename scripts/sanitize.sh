@@ -32,7 +32,7 @@ case $MODE in
     TESTS=(test_session test_transport_roundtrip test_transport_lockstep)
     # Races inside the DDS libraries (not built with TSan, so their atomics are
     # invisible to it) are theirs; any race with a frame of ours is reported.
-    export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/tsan.supp"
+    export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/support/tsan.supp"
     ;;
   *) echo "scripts/sanitize.sh: give address or thread" >&2; exit 2 ;;
 esac

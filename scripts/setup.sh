@@ -11,7 +11,7 @@ PACKAGES=(cmake g++ make git pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev gnuplot-nox
   cyclonedds-dev cyclonedds-tools libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
-  iproute2   # ip netns: the two-host test (tests/netns_coupled.sh)
+  iproute2   # ip netns: the two-host test (tests/integration/netns_coupled.sh)
   nftables   # its lossy link where the kernel has no netem
   openssl    # scripts/make_test_ca.sh: the certificates of a secured DDS domain
   chromium   # headless: the study report test opens report.html in a real browser

@@ -3,7 +3,7 @@
 // facet belongs to. tyre_fe tags its boundary facets with it, the wire carries
 // it (idl/cosim_topics.idl, enum FacetTag: TAG_ + the upper-case name, in this
 // order; both DDS backends check every value at compile time and
-// tests/test_facet_tag.cpp checks the names and order against the IDL file),
+// tests/common/test_facet_tag.cpp checks the names and order against the IDL file),
 // and the coupler chooses friction by it (thesis 4.4, 6.1).
 #include <cstdint>
 #include <string>

@@ -6,7 +6,7 @@
 // The plain SPH gradient of particle i, (1/rho_i) sum_j m_j (v_j - v_i) (x) grad W,
 // sees a linear field v = A x as A M with M = (1/rho_i) sum_j m_j (x_j - x_i) (x) grad W.
 // M is the identity only for a complete, continuous neighbourhood: on a lattice it
-// is a factor near 1 (tests/test_snow_oedometer.cpp), and where the support is cut
+// is a factor near 1 (tests/snow_sph/test_snow_oedometer.cpp), and where the support is cut
 // (a free surface, a body's face) it loses up to half of the normal component. The
 // corrected gradient L M^-1 is exact for every linear field.
 #include <Eigen/Dense>

@@ -1,7 +1,7 @@
 #pragma once
 // Neighbour search: a uniform cell list feeding an index-based (CSR) Verlet
 // list with a skin, rebuilt only when a particle has moved more than half the
-// skin. Tested against a brute-force O(n^2) search (tests/test_neighbours.cpp).
+// skin. Tested against a brute-force O(n^2) search (tests/snow_sph/test_neighbours.cpp).
 #include <cstdint>
 #include <vector>
 

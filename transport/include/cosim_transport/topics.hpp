@@ -4,7 +4,7 @@
 // fields in the same order as the IDL (structure of arrays, SI units in the
 // names). Each backend converts these to and from its generated types; the
 // Cyclone backend checks at compile time that every struct here has as many
-// fields as its IDL counterpart, and tests/test_transport_roundtrip.cpp
+// fields as its IDL counterpart, and tests/transport/test_transport_roundtrip.cpp
 // round-trips every field through every vendor pair.
 #include <cstdint>
 #include <string>

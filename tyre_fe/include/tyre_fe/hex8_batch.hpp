@@ -21,7 +21,7 @@
 // J^(-1/3) of the rubber comes from Newton's iteration for the inverse cube root
 // instead of cbrt, with cbrt kept for a lane that Newton has not brought to a
 // residual of 1e-14. Results agree with elements.cpp to rounding
-// (tests/test_tyre_hex8_batch.cpp).
+// (tests/tyre_fe/test_tyre_hex8_batch.cpp).
 #include <array>
 #include <vector>
 

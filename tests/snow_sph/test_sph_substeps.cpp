@@ -16,7 +16,7 @@
 
 namespace {
 
-const std::string kScene = test_support::source_dir() + "/tests/test_sph_substeps.textproto";
+const std::string kScene = test_support::source_dir() + "/tests/snow_sph/test_sph_substeps.textproto";
 
 // A 0.4 m square plate, its underside facing the snow (outward normal -z), at
 // height z, moving at vz.

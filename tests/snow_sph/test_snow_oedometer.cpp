@@ -128,7 +128,7 @@ TEST(SnowOedometer, ClosedFormMatchesMaterialPointIntegration) {
   // stays ~5e-4 q_max below the corner, which changes pa by ~(2/3) 5e-4 q_max and the
   // plastic strain by ~1e-4 of itself; 1e-3 is ten times that. A wrong corner
   // (e.g. the shear surface's p-q intercept, or the cap's pb - pa) is off by percents.
-  const auto loaded = cosim::load_scene(test_support::source_dir() + "/tests/test_snow_oedometer.textproto");
+  const auto loaded = cosim::load_scene(test_support::source_dir() + "/tests/snow_sph/test_snow_oedometer.textproto");
   const Oedometer o = read_scene(*loaded);
   const auto mat = snow_sph::material_from_scene(loaded->message.sph().blocks(0).material());
   const int layers = 200;
@@ -180,7 +180,7 @@ nlohmann::json run_at(const Oedometer& o, const std::string& scene, double spaci
 }
 
 TEST(SnowOedometer, SettlementConvergesToTheClosedForm) {
-  const std::string scene = test_support::source_dir() + "/tests/test_snow_oedometer.textproto";
+  const std::string scene = test_support::source_dir() + "/tests/snow_sph/test_snow_oedometer.textproto";
   const auto loaded = cosim::load_scene(scene);
   ASSERT_EQ(loaded->message.sph().kernel(), sc::CUBIC);  // the error estimate below is the cubic spline's
   const Oedometer o = read_scene(*loaded);
@@ -244,7 +244,7 @@ TEST(SnowOedometer, LagrangianMeshSettlesAsTheClosedForm) {
   // midpoint integration over 1 cm layers of a compaction that varies smoothly
   // with depth (the stress is piecewise constant per element: O(dz^2)), and the
   // rest criterion (nodes below 1e-6 m/s): 0.5 % of the settlement.
-  const auto loaded = cosim::load_scene(test_support::source_dir() + "/tests/test_snow_oedometer.textproto");
+  const auto loaded = cosim::load_scene(test_support::source_dir() + "/tests/snow_sph/test_snow_oedometer.textproto");
   const Oedometer o = read_scene(*loaded);
   const auto mat = snow_sph::material_from_scene(loaded->message.sph().blocks(0).material());
   namespace fe = snow_sph::axisym_fe;
@@ -308,7 +308,7 @@ TEST(SnowOedometer, RunEndsWhenThePlateComesToRest) {
   // the load is on and the plate has been slower than 1 mm/s for 0.05 s, well
   // before a generous end time, and says so. Without one (the scene as it is) the
   // same column runs to its end time: RunOutputs and the test above.
-  const std::string scene = test_support::source_dir() + "/tests/test_snow_oedometer.textproto";
+  const std::string scene = test_support::source_dir() + "/tests/snow_sph/test_snow_oedometer.textproto";
   const auto s = test_support::run(scene,
                                    {"time.end_time_s=3", "sph.rigid_bodies[0].rest_speed_m_per_s=0.001",
                                     "sph.rigid_bodies[0].rest_hold_s=0.05"},

@@ -21,7 +21,7 @@ namespace {
 // (> 0: towards it, they attract).
 double pull_towards_each_other(double distance_in_dx, double epsilon) {
   const auto loaded = snow_sph::load_sph_scene(
-      test_support::source_dir() + "/tests/test_sph_tensile.textproto",
+      test_support::source_dir() + "/tests/snow_sph/test_sph_tensile.textproto",
       {"sph.blocks[0].region.max.x=0.0801", "sph.blocks[0].region.max.y=0.0751", "sph.blocks[0].region.max.z=0.0751"});
   snow_sph::Model model = snow_sph::build_model(loaded->message);
   model.settings.artificial_stress_epsilon = epsilon;

@@ -82,7 +82,7 @@ TEST(Launcher, TheThesisSipesRefuseSlitFields) {
 TEST(Launcher, StudyCasesDeriveTheirSettingsFromEarlierCases) {
   const auto dir = test_support::scratch("launcher_study_derived");
   auto [code, out] = shell("OMP_NUM_THREADS=1 " + bin() + "/cosim study " + test_support::source_dir() +
-                           "/tests/test_launcher_derived.textproto --out " + dir + " --no-vtk");
+                           "/tests/launcher/test_launcher_derived.textproto --out " + dir + " --no-vtk");
   ASSERT_EQ(code, 0) << out;
   auto summary = [&](const std::string& c) { return nlohmann::json::parse(std::ifstream(dir + "/" + c + "/summary.json")); };
   const auto towed = summary("towed"), slip = summary("slip20"), derived = summary("derived");
@@ -108,7 +108,7 @@ TEST(Launcher, StudyCasesDeriveTheirSettingsFromEarlierCases) {
 TEST(Launcher, StudyWritesTableAndPlot) {
   const auto dir = test_support::scratch("launcher_study");
   auto [code, out] = shell(bin() + "/cosim study " + test_support::source_dir() +
-                           "/tests/test_launcher.textproto --out " + dir + " --no-vtk");
+                           "/tests/launcher/test_launcher.textproto --out " + dir + " --no-vtk");
   ASSERT_EQ(code, 0) << out;
   std::ifstream table(dir + "/table.csv");
   std::string header, row1, row2;
@@ -128,7 +128,7 @@ TEST(Launcher, StudyWritesTableAndPlot) {
 // included, is the earlier run's) and runs the one whose summary is missing.
 TEST(Launcher, StudyResumeKeepsCompletedCasesAndRunsTheRest) {
   const auto dir = test_support::scratch("launcher_study_resume");
-  const std::string study = bin() + "/cosim study " + test_support::source_dir() + "/tests/test_launcher.textproto --out " +
+  const std::string study = bin() + "/cosim study " + test_support::source_dir() + "/tests/launcher/test_launcher.textproto --out " +
                             dir + " --no-vtk";
   auto [code, out] = shell(study);
   ASSERT_EQ(code, 0) << out;

@@ -35,7 +35,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 TEST(StudyReport, OpensInAHeadlessBrowserWithEveryFigureAndTable) {
   const auto dir = test_support::scratch("study_report");
   const std::string study = "OMP_NUM_THREADS=1 " + bin() + "/cosim study " + test_support::source_dir() +
-                            "/tests/test_study_report.textproto --out " + dir + " --no-vtk";
+                            "/tests/launcher/test_study_report.textproto --out " + dir + " --no-vtk";
   // One pass, then the other: the tables join what completed in DIR.
   auto [code, out] = shell(study + " --pass coarse");
   ASSERT_EQ(code, 0) << out;

@@ -15,7 +15,7 @@
 
 namespace {
 
-const std::string kScene = test_support::source_dir() + "/tests/test_sph_substeps.textproto";
+const std::string kScene = test_support::source_dir() + "/tests/snow_sph/test_sph_substeps.textproto";
 
 // A 5 x 5 x 5 cube of particles (centres 0.46 ... 0.54 m) all moving at 1 m/s
 // along x, and a coupled surface far above it (no contact) whose box ends at
