@@ -17,22 +17,26 @@ using transport::ForceSummary;
 using transport::RunControl;
 using transport::WheelState;
 
-// The forces of thesis chapter 2 as the coupler publishes them, in display order.
+// The forces of thesis chapter 2 as the coupler publishes them: every field of
+// the topic, in the IDL's order (cosim/wire_fields.hpp), shown and recorded.
 struct ForceField {
   const char* name;
   double ForceSummary::*value;
 };
-constexpr ForceField kForces[] = {
-    {"traction_force_N", &ForceSummary::traction_force_N},
-    {"motion_resistance_N", &ForceSummary::motion_resistance_N},
-    {"groove_force_N", &ForceSummary::groove_force_N},
-    {"rolling_resistance_force_N", &ForceSummary::rolling_resistance_force_N},
-    {"drawbar_pull_N", &ForceSummary::drawbar_pull_N},
-    {"net_longitudinal_pressure_force_N", &ForceSummary::net_longitudinal_pressure_force_N},
-    {"sinkage_m", &ForceSummary::sinkage_m},
-    {"contact_area_m2", &ForceSummary::contact_area_m2},
-};
+#define COSIM_FORCE_FIELD(type, name, init) {#name, &ForceSummary::name},
+constexpr ForceField kForces[] = {COSIM_WIRE_FIELDS_ForceSummary(COSIM_FORCE_FIELD)};
+#undef COSIM_FORCE_FIELD
 constexpr std::size_t kForceCount = sizeof(kForces) / sizeof(kForces[0]);
+
+// Digits after the point, by the unit in the name: lengths and areas (_m, _m2)
+// to 0.01 mm and 0.1 cm2, forces and moments (_N, _Nm) to 0.1.
+int display_digits(const std::string& name) {
+  const auto ends_with = [&](const char* unit) {
+    const std::string u = unit;
+    return name.size() >= u.size() && name.compare(name.size() - u.size(), u.size(), u) == 0;
+  };
+  return ends_with("_m") || ends_with("_m2") ? 5 : 1;
+}
 
 class CsvRecord {
  public:
@@ -73,7 +77,7 @@ void draw(std::FILE* screen, bool terminal, bool joined, const MonitorResult& r,
       << last->header.sim_time_s << " s\n";
     for (std::size_t k = 0; k < kForceCount; ++k)
       o << "  " << std::left << std::setw(36) << kForces[k].name << std::right << std::setw(14)
-        << std::setprecision(kForces[k].name[0] == 's' || kForces[k].name[0] == 'c' ? 5 : 1)
+        << std::setprecision(display_digits(kForces[k].name))
         << last->*kForces[k].value << "  " << sparkline(history[k]) << '\n';
   }
   if (wheel)

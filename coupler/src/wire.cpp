@@ -44,11 +44,9 @@ FacetLoads facet_loads_from_contact(const cosim::transport::ContactLoads& c, con
 }
 
 void check_wheel_state(const cosim::transport::WheelState& w, const std::string& what) {
-  const std::pair<const char*, double> fields[] = {
-      {"rim_x_m", w.rim_x_m}, {"rim_z_m", w.rim_z_m}, {"rotation_angle_rad", w.rotation_angle_rad},
-      {"forward_speed_mps", w.forward_speed_mps}, {"spin_rate_radps", w.spin_rate_radps},
-      {"applied_torque_Nm", w.applied_torque_Nm}, {"reaction_moment_y_Nm", w.reaction_moment_y_Nm},
-      {"wheel_load_N", w.wheel_load_N}, {"rim_longitudinal_force_N", w.rim_longitudinal_force_N}};
+#define COSIM_NAMED_VALUE(type, name, init) {#name, w.name},
+  const std::pair<const char*, double> fields[] = {COSIM_WIRE_FIELDS_WheelState(COSIM_NAMED_VALUE)};
+#undef COSIM_NAMED_VALUE
   for (const auto& [name, value] : fields)
     if (!std::isfinite(value)) throw cosim::Error(what + ": " + name + " is not a finite number");
 }
@@ -62,18 +60,15 @@ WheelInput wheel_input(const cosim::transport::WheelState& w, double rolling_rad
   return in;
 }
 
+// Every field of the topic (cosim/wire_fields.hpp) from the decomposition's
+// field of the same name.
 cosim::transport::ForceSummary force_summary(const ForceDecomposition& d,
                                              const cosim::transport::SampleHeader& header) {
   cosim::transport::ForceSummary s;
   s.header = header;
-  s.traction_force_N = d.traction_force_N;
-  s.motion_resistance_N = d.motion_resistance_N;
-  s.groove_force_N = d.groove_force_N;
-  s.rolling_resistance_force_N = d.rolling_resistance_force_N;
-  s.drawbar_pull_N = d.drawbar_pull_N;
-  s.net_longitudinal_pressure_force_N = d.net_longitudinal_pressure_force_N;
-  s.sinkage_m = d.sinkage_m;
-  s.contact_area_m2 = d.contact_area_m2;
+#define COSIM_FROM_DECOMPOSITION(type, name, init) s.name = d.name;
+  COSIM_WIRE_FIELDS_ForceSummary(COSIM_FROM_DECOMPOSITION)
+#undef COSIM_FROM_DECOMPOSITION
   return s;
 }
 

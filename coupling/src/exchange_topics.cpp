@@ -3,38 +3,27 @@
 namespace cosim::coupling {
 namespace {
 
-// The exchange types and their topics name their fields alike (the topics add
-// a header; the mesh topic adds the tyre's node ids), so one copy of the
-// fields serves both directions.
+// The exchange types and their topics have the same fields, expanded from one
+// table (cosim/wire_fields.hpp); the topics add a header, the mesh topic the
+// tyre's node ids. One copy of the table's fields serves both directions.
+#define COSIM_COPY_FIELD(type, name, init) b.name = a.name;
+
 template <class From, class To>
 void copy_kinematics(const From& a, To& b) {
-  b.nodes = a.nodes;
-  b.x_m = a.x_m, b.y_m = a.y_m, b.z_m = a.z_m;
-  b.vx_mps = a.vx_mps, b.vy_mps = a.vy_mps, b.vz_mps = a.vz_mps;
-  b.facets = a.facets;
-  b.friction_coefficient = a.friction_coefficient;
+  COSIM_WIRE_FIELDS_SurfaceKinematics(COSIM_COPY_FIELD)
 }
 
 template <class From, class To>
 void copy_loads(const From& a, To& b) {
-  b.nodes = a.nodes;
-  b.fx_N = a.fx_N, b.fy_N = a.fy_N, b.fz_N = a.fz_N;
-  b.facets = a.facets;
-  b.normal_force_N = a.normal_force_N;
-  b.pressure_x_N = a.pressure_x_N, b.pressure_y_N = a.pressure_y_N, b.pressure_z_N = a.pressure_z_N;
-  b.tangential_x_N = a.tangential_x_N, b.tangential_y_N = a.tangential_y_N, b.tangential_z_N = a.tangential_z_N;
-  b.contact_area_m2 = a.contact_area_m2;
-  b.pressure_Pa = a.pressure_Pa;
-  b.particle_reach_z_m = a.particle_reach_z_m;
+  COSIM_WIRE_FIELDS_ContactLoads(COSIM_COPY_FIELD)
 }
 
 template <class From, class To>
 void copy_topology(const From& a, To& b) {
-  b.x_m = a.x_m, b.y_m = a.y_m, b.z_m = a.z_m;
-  b.facet_nodes = a.facet_nodes;
-  b.facet_tags = a.facet_tags;
-  b.node_mass_kg = a.node_mass_kg;
+  COSIM_WIRE_FIELDS_SurfaceTopology(COSIM_COPY_FIELD)
 }
+
+#undef COSIM_COPY_FIELD
 
 }  // namespace
 

@@ -150,81 +150,19 @@ inline RunControl control_sample(std::uint64_t run_id, std::uint64_t step) {
           "terrain: particle 1234 left the domain (\"snow\" block)"};
 }
 
+// Every field of the table (cosim/wire_fields.hpp), so a field added to the
+// IDL and the table is checked through every vendor pair without a line here.
+#define COSIM_EXPECT_SAME_FIELD(type, name, init) EXPECT_EQ(a.name, b.name) << #name " differs";
 inline void expect_same(const SampleHeader& a, const SampleHeader& b) {
-  EXPECT_EQ(a.run_id, b.run_id);
-  EXPECT_EQ(a.step, b.step);
-  EXPECT_EQ(a.sim_time_s, b.sim_time_s);
+  COSIM_WIRE_FIELDS_SampleHeader(COSIM_EXPECT_SAME_FIELD)
 }
-inline void expect_same(const SurfaceMesh& a, const SurfaceMesh& b) {
-  expect_same(a.header, b.header);
-  EXPECT_EQ(a.node_ids, b.node_ids);
-  EXPECT_EQ(a.x_m, b.x_m);
-  EXPECT_EQ(a.y_m, b.y_m);
-  EXPECT_EQ(a.z_m, b.z_m);
-  EXPECT_EQ(a.facet_nodes, b.facet_nodes);
-  EXPECT_TRUE(a.facet_tags == b.facet_tags) << "facet_tags differ";
-  EXPECT_EQ(a.node_mass_kg, b.node_mass_kg);
-}
-inline void expect_same(const SurfaceKinematics& a, const SurfaceKinematics& b) {
-  expect_same(a.header, b.header);
-  EXPECT_EQ(a.nodes, b.nodes);
-  EXPECT_EQ(a.x_m, b.x_m);
-  EXPECT_EQ(a.y_m, b.y_m);
-  EXPECT_EQ(a.z_m, b.z_m);
-  EXPECT_EQ(a.vx_mps, b.vx_mps);
-  EXPECT_EQ(a.vy_mps, b.vy_mps);
-  EXPECT_EQ(a.vz_mps, b.vz_mps);
-  EXPECT_EQ(a.facets, b.facets);
-  EXPECT_EQ(a.friction_coefficient, b.friction_coefficient);
-}
-inline void expect_same(const ContactLoads& a, const ContactLoads& b) {
-  expect_same(a.header, b.header);
-  EXPECT_EQ(a.nodes, b.nodes);
-  EXPECT_EQ(a.fx_N, b.fx_N);
-  EXPECT_EQ(a.fy_N, b.fy_N);
-  EXPECT_EQ(a.fz_N, b.fz_N);
-  EXPECT_EQ(a.facets, b.facets);
-  EXPECT_EQ(a.normal_force_N, b.normal_force_N);
-  EXPECT_EQ(a.pressure_x_N, b.pressure_x_N);
-  EXPECT_EQ(a.pressure_y_N, b.pressure_y_N);
-  EXPECT_EQ(a.pressure_z_N, b.pressure_z_N);
-  EXPECT_EQ(a.tangential_x_N, b.tangential_x_N);
-  EXPECT_EQ(a.tangential_y_N, b.tangential_y_N);
-  EXPECT_EQ(a.tangential_z_N, b.tangential_z_N);
-  EXPECT_EQ(a.contact_area_m2, b.contact_area_m2);
-  EXPECT_EQ(a.pressure_Pa, b.pressure_Pa);
-}
-inline void expect_same(const WheelState& a, const WheelState& b) {
-  expect_same(a.header, b.header);
-  EXPECT_EQ(a.rim_x_m, b.rim_x_m);
-  EXPECT_EQ(a.rim_z_m, b.rim_z_m);
-  EXPECT_EQ(a.rotation_angle_rad, b.rotation_angle_rad);
-  EXPECT_EQ(a.forward_speed_mps, b.forward_speed_mps);
-  EXPECT_EQ(a.spin_rate_radps, b.spin_rate_radps);
-  EXPECT_EQ(a.applied_torque_Nm, b.applied_torque_Nm);
-  EXPECT_EQ(a.reaction_moment_y_Nm, b.reaction_moment_y_Nm);
-  EXPECT_EQ(a.wheel_load_N, b.wheel_load_N);
-  EXPECT_EQ(a.rim_longitudinal_force_N, b.rim_longitudinal_force_N);
-}
-inline void expect_same(const ForceSummary& a, const ForceSummary& b) {
-  expect_same(a.header, b.header);
-  EXPECT_EQ(a.traction_force_N, b.traction_force_N);
-  EXPECT_EQ(a.motion_resistance_N, b.motion_resistance_N);
-  EXPECT_EQ(a.groove_force_N, b.groove_force_N);
-  EXPECT_EQ(a.rolling_resistance_force_N, b.rolling_resistance_force_N);
-  EXPECT_EQ(a.drawbar_pull_N, b.drawbar_pull_N);
-  EXPECT_EQ(a.net_longitudinal_pressure_force_N, b.net_longitudinal_pressure_force_N);
-  EXPECT_EQ(a.sinkage_m, b.sinkage_m);
-  EXPECT_EQ(a.contact_area_m2, b.contact_area_m2);
-}
-inline void expect_same(const RunControl& a, const RunControl& b) {
-  expect_same(a.header, b.header);
-  EXPECT_EQ(a.kind, b.kind);
-  EXPECT_EQ(a.sender, b.sender);
-  EXPECT_EQ(a.addressee, b.addressee);
-  EXPECT_EQ(a.proposed_time_step_s, b.proposed_time_step_s);
-  EXPECT_EQ(a.agreed_time_step_s, b.agreed_time_step_s);
-  EXPECT_EQ(a.reason, b.reason);
-}
+#define COSIM_EXPECT_SAME(T)                           \
+  inline void expect_same(const T& a, const T& b) {    \
+    expect_same(a.header, b.header);                   \
+    COSIM_WIRE_FIELDS_##T(COSIM_EXPECT_SAME_FIELD)     \
+  }
+COSIM_WIRE_TOPICS(COSIM_EXPECT_SAME)
+#undef COSIM_EXPECT_SAME
+#undef COSIM_EXPECT_SAME_FIELD
 
 }  // namespace test_support

@@ -3,6 +3,8 @@
 // idlc generates from idl/cosim_topics.idl. Writing needs no copy: view()
 // points the C sequences at the neutral vectors (the view must not outlive
 // them or the scratch buffers). Reading copies out of the loaned C sample.
+#include <cstddef>
+#include <deque>
 #include <vector>
 
 #include "cosim_topics.h"
@@ -10,9 +12,15 @@
 
 namespace cosim::transport::cyclone {
 
-// Buffers for fields whose element type differs on the wire (enums).
+// Buffers for sequences whose element type differs on the wire (enums): one
+// per such field of the sample being viewed, kept from sample to sample.
 struct Scratch {
-  std::vector<cosim_wire_FacetTag> facet_tags;
+  std::deque<std::vector<cosim_wire_FacetTag>> facet_tags;
+  std::size_t facet_tags_used = 0;  // view() starts each sample at 0
+  std::vector<cosim_wire_FacetTag>& next_facet_tags() {
+    if (facet_tags_used == facet_tags.size()) facet_tags.emplace_back();
+    return facet_tags[facet_tags_used++];
+  }
 };
 
 void view(const SurfaceMesh& s, cosim_wire_SurfaceMesh& w, Scratch& scratch);

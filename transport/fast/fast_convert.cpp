@@ -1,7 +1,9 @@
 // Neutral structs <-> fastddsgen classes, field by field in IDL order.
 #include "fast_convert.hpp"
 
+#include <cstddef>
 #include <utility>
+#include <vector>
 
 namespace cosim::transport::fast {
 
@@ -24,171 +26,48 @@ static_assert(static_cast<int>(cosim_wire::CONTROL_CHECKPOINT_AT) == static_cast
 
 namespace {
 
-void to_wire(const SampleHeader& s, cosim_wire::SampleHeader& w) {
-  w.run_id(s.run_id);
-  w.step(s.step);
-  w.sim_time_s(s.sim_time_s);
+// One overload per kind of field, chosen by the neutral type; fastddsgen's
+// accessors return a reference to every member. to_wire copies (reusing the
+// wire object's capacity from step to step); from_wire moves the sequences out.
+template <class T>
+void put(const T& s, T& w) { w = s; }
+void put(ControlKind s, cosim_wire::ControlKind& w) { w = static_cast<cosim_wire::ControlKind>(s); }
+void put(Role s, cosim_wire::Role& w) { w = static_cast<cosim_wire::Role>(s); }
+void put(const std::vector<FacetTag>& s, std::vector<cosim_wire::FacetTag>& w) {
+  w.resize(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) w[i] = static_cast<cosim_wire::FacetTag>(s[i]);
 }
-void from_wire(const cosim_wire::SampleHeader& w, SampleHeader& s) {
-  s.run_id = w.run_id();
-  s.step = w.step();
-  s.sim_time_s = w.sim_time_s();
+
+template <class T>
+void take(T& w, T& s) { s = std::move(w); }
+void take(cosim_wire::ControlKind w, ControlKind& s) { s = static_cast<ControlKind>(w); }
+void take(cosim_wire::Role w, Role& s) { s = static_cast<Role>(w); }
+void take(const std::vector<cosim_wire::FacetTag>& w, std::vector<FacetTag>& s) {
+  s.resize(w.size());
+  for (std::size_t i = 0; i < s.size(); ++i) s[i] = static_cast<FacetTag>(w[i]);
 }
+
+#define COSIM_PUT_FIELD(type, name, init) put(s.name, w.name());
+#define COSIM_TAKE_FIELD(type, name, init) take(w.name(), s.name);
+
+void put(const SampleHeader& s, cosim_wire::SampleHeader& w) { COSIM_WIRE_FIELDS_SampleHeader(COSIM_PUT_FIELD) }
+void take(cosim_wire::SampleHeader& w, SampleHeader& s) { COSIM_WIRE_FIELDS_SampleHeader(COSIM_TAKE_FIELD) }
 
 }  // namespace
 
-void to_wire(const SurfaceMesh& s, cosim_wire::SurfaceMesh& w) {
-  to_wire(s.header, w.header());
-  w.node_ids() = s.node_ids;
-  w.x_m() = s.x_m;
-  w.y_m() = s.y_m;
-  w.z_m() = s.z_m;
-  w.facet_nodes() = s.facet_nodes;
-  w.facet_tags().resize(s.facet_tags.size());
-  for (std::size_t i = 0; i < s.facet_tags.size(); ++i)
-    w.facet_tags()[i] = static_cast<cosim_wire::FacetTag>(s.facet_tags[i]);
-  w.node_mass_kg() = s.node_mass_kg;
-}
-void from_wire(cosim_wire::SurfaceMesh& w, SurfaceMesh& s) {
-  from_wire(w.header(), s.header);
-  s.node_ids = std::move(w.node_ids());
-  s.x_m = std::move(w.x_m());
-  s.y_m = std::move(w.y_m());
-  s.z_m = std::move(w.z_m());
-  s.facet_nodes = std::move(w.facet_nodes());
-  s.facet_tags.resize(w.facet_tags().size());
-  for (std::size_t i = 0; i < s.facet_tags.size(); ++i)
-    s.facet_tags[i] = static_cast<FacetTag>(w.facet_tags()[i]);
-  s.node_mass_kg = std::move(w.node_mass_kg());
-}
-
-void to_wire(const SurfaceKinematics& s, cosim_wire::SurfaceKinematics& w) {
-  to_wire(s.header, w.header());
-  w.nodes() = s.nodes;
-  w.x_m() = s.x_m;
-  w.y_m() = s.y_m;
-  w.z_m() = s.z_m;
-  w.vx_mps() = s.vx_mps;
-  w.vy_mps() = s.vy_mps;
-  w.vz_mps() = s.vz_mps;
-  w.facets() = s.facets;
-  w.friction_coefficient() = s.friction_coefficient;
-}
-void from_wire(cosim_wire::SurfaceKinematics& w, SurfaceKinematics& s) {
-  from_wire(w.header(), s.header);
-  s.nodes = std::move(w.nodes());
-  s.x_m = std::move(w.x_m());
-  s.y_m = std::move(w.y_m());
-  s.z_m = std::move(w.z_m());
-  s.vx_mps = std::move(w.vx_mps());
-  s.vy_mps = std::move(w.vy_mps());
-  s.vz_mps = std::move(w.vz_mps());
-  s.facets = std::move(w.facets());
-  s.friction_coefficient = std::move(w.friction_coefficient());
-}
-
-void to_wire(const ContactLoads& s, cosim_wire::ContactLoads& w) {
-  to_wire(s.header, w.header());
-  w.nodes() = s.nodes;
-  w.fx_N() = s.fx_N;
-  w.fy_N() = s.fy_N;
-  w.fz_N() = s.fz_N;
-  w.facets() = s.facets;
-  w.normal_force_N() = s.normal_force_N;
-  w.pressure_x_N() = s.pressure_x_N;
-  w.pressure_y_N() = s.pressure_y_N;
-  w.pressure_z_N() = s.pressure_z_N;
-  w.tangential_x_N() = s.tangential_x_N;
-  w.tangential_y_N() = s.tangential_y_N;
-  w.tangential_z_N() = s.tangential_z_N;
-  w.contact_area_m2() = s.contact_area_m2;
-  w.pressure_Pa() = s.pressure_Pa;
-  w.particle_reach_z_m(s.particle_reach_z_m);
-}
-void from_wire(cosim_wire::ContactLoads& w, ContactLoads& s) {
-  from_wire(w.header(), s.header);
-  s.nodes = std::move(w.nodes());
-  s.fx_N = std::move(w.fx_N());
-  s.fy_N = std::move(w.fy_N());
-  s.fz_N = std::move(w.fz_N());
-  s.facets = std::move(w.facets());
-  s.normal_force_N = std::move(w.normal_force_N());
-  s.pressure_x_N = std::move(w.pressure_x_N());
-  s.pressure_y_N = std::move(w.pressure_y_N());
-  s.pressure_z_N = std::move(w.pressure_z_N());
-  s.tangential_x_N = std::move(w.tangential_x_N());
-  s.tangential_y_N = std::move(w.tangential_y_N());
-  s.tangential_z_N = std::move(w.tangential_z_N());
-  s.contact_area_m2 = std::move(w.contact_area_m2());
-  s.pressure_Pa = std::move(w.pressure_Pa());
-  s.particle_reach_z_m = w.particle_reach_z_m();
-}
-
-void to_wire(const WheelState& s, cosim_wire::WheelState& w) {
-  to_wire(s.header, w.header());
-  w.rim_x_m(s.rim_x_m);
-  w.rim_z_m(s.rim_z_m);
-  w.rotation_angle_rad(s.rotation_angle_rad);
-  w.forward_speed_mps(s.forward_speed_mps);
-  w.spin_rate_radps(s.spin_rate_radps);
-  w.applied_torque_Nm(s.applied_torque_Nm);
-  w.reaction_moment_y_Nm(s.reaction_moment_y_Nm);
-  w.wheel_load_N(s.wheel_load_N);
-  w.rim_longitudinal_force_N(s.rim_longitudinal_force_N);
-}
-void from_wire(cosim_wire::WheelState& w, WheelState& s) {
-  from_wire(w.header(), s.header);
-  s.rim_x_m = w.rim_x_m();
-  s.rim_z_m = w.rim_z_m();
-  s.rotation_angle_rad = w.rotation_angle_rad();
-  s.forward_speed_mps = w.forward_speed_mps();
-  s.spin_rate_radps = w.spin_rate_radps();
-  s.applied_torque_Nm = w.applied_torque_Nm();
-  s.reaction_moment_y_Nm = w.reaction_moment_y_Nm();
-  s.wheel_load_N = w.wheel_load_N();
-  s.rim_longitudinal_force_N = w.rim_longitudinal_force_N();
-}
-
-void to_wire(const ForceSummary& s, cosim_wire::ForceSummary& w) {
-  to_wire(s.header, w.header());
-  w.traction_force_N(s.traction_force_N);
-  w.motion_resistance_N(s.motion_resistance_N);
-  w.groove_force_N(s.groove_force_N);
-  w.rolling_resistance_force_N(s.rolling_resistance_force_N);
-  w.drawbar_pull_N(s.drawbar_pull_N);
-  w.net_longitudinal_pressure_force_N(s.net_longitudinal_pressure_force_N);
-  w.sinkage_m(s.sinkage_m);
-  w.contact_area_m2(s.contact_area_m2);
-}
-void from_wire(cosim_wire::ForceSummary& w, ForceSummary& s) {
-  from_wire(w.header(), s.header);
-  s.traction_force_N = w.traction_force_N();
-  s.motion_resistance_N = w.motion_resistance_N();
-  s.groove_force_N = w.groove_force_N();
-  s.rolling_resistance_force_N = w.rolling_resistance_force_N();
-  s.drawbar_pull_N = w.drawbar_pull_N();
-  s.net_longitudinal_pressure_force_N = w.net_longitudinal_pressure_force_N();
-  s.sinkage_m = w.sinkage_m();
-  s.contact_area_m2 = w.contact_area_m2();
-}
-
-void to_wire(const RunControl& s, cosim_wire::RunControl& w) {
-  to_wire(s.header, w.header());
-  w.kind(static_cast<cosim_wire::ControlKind>(s.kind));
-  w.sender(static_cast<cosim_wire::Role>(s.sender));
-  w.addressee(static_cast<cosim_wire::Role>(s.addressee));
-  w.proposed_time_step_s(s.proposed_time_step_s);
-  w.agreed_time_step_s(s.agreed_time_step_s);
-  w.reason(s.reason);
-}
-void from_wire(cosim_wire::RunControl& w, RunControl& s) {
-  from_wire(w.header(), s.header);
-  s.kind = static_cast<ControlKind>(w.kind());
-  s.sender = static_cast<Role>(w.sender());
-  s.addressee = static_cast<Role>(w.addressee());
-  s.proposed_time_step_s = w.proposed_time_step_s();
-  s.agreed_time_step_s = w.agreed_time_step_s();
-  s.reason = std::move(w.reason());
-}
+// Field by field from the table of the IDL's fields (cosim/wire_fields.hpp).
+#define COSIM_CONVERSIONS(T)                            \
+  void to_wire(const T& s, cosim_wire::T& w) {          \
+    put(s.header, w.header());                          \
+    COSIM_WIRE_FIELDS_##T(COSIM_PUT_FIELD)              \
+  }                                                     \
+  void from_wire(cosim_wire::T& w, T& s) {              \
+    take(w.header(), s.header);                         \
+    COSIM_WIRE_FIELDS_##T(COSIM_TAKE_FIELD)             \
+  }
+COSIM_WIRE_TOPICS(COSIM_CONVERSIONS)
+#undef COSIM_CONVERSIONS
+#undef COSIM_PUT_FIELD
+#undef COSIM_TAKE_FIELD
 
 }  // namespace cosim::transport::fast

@@ -23,7 +23,9 @@ void check_wheel_state(const cosim::transport::WheelState& wheel, const std::str
 // The rim state the decomposition needs, with the rolling radius r (eq. 5.1).
 WheelInput wheel_input(const cosim::transport::WheelState& wheel, double rolling_radius_m);
 
-// The ForceSummary sample of a decomposition.
+// The ForceSummary sample of a decomposition: every field of the topic from the
+// decomposition's field of the same name (a topic field the decomposition does
+// not compute fails to compile here).
 cosim::transport::ForceSummary force_summary(const ForceDecomposition& d, const cosim::transport::SampleHeader& header);
 
 }  // namespace coupler
