@@ -85,6 +85,9 @@ TEST(CouplerWire, ContactLoadsBecomeFacetLoadsAndASummary) {
   EXPECT_NEAR(sum.drawbar_pull_N, 90.0 - 30.0 - sum.rolling_resistance_force_N, 1e-12);
   EXPECT_NEAR(sum.contact_area_m2, 8e-4, 1e-15);
   EXPECT_NEAR(sum.sinkage_m, 0.4, 1e-15);
+  // RRM = sum Pz (x - x_rim): the wall's 40 N, 0.03 m ahead of the rim (the bottom facet is under it).
+  EXPECT_NEAR(sum.rolling_resistance_moment_Nm, 40.0 * (0.04 - 0.01), 1e-12);
+  EXPECT_EQ(sum.rolling_resistance_force_N, d.rolling_resistance_moment_Nm / 0.4);  // F5 = RRM / r
 
   c.facets[0] = 3;  // out of range
   EXPECT_THROW(coupler::facet_loads_from_contact(c, s.tags, g), cosim::Error);

@@ -86,6 +86,7 @@ TEST(Monitor, RecordsOneRunAndStopsWithIt) {
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line.rfind("run_id,step,sim_time_s,traction_force_N", 0), 0u) << line;
+  EXPECT_NE(line.find(",rolling_resistance_moment_Nm"), std::string::npos) << line;  // every field of the topic
   int rows = 0;
   while (std::getline(in, line)) {
     const std::string expected = std::to_string(kRun) + "," + std::to_string(rows) + ",";

@@ -143,7 +143,7 @@ inline WheelState wheel_sample(std::uint64_t run_id, std::uint64_t step) {
   return {header(run_id, step), 0.125, 0.3125, 1.5, 2.7778, 9.25, 310.5, -42.75, 4000.5, -187.25};
 }
 inline ForceSummary forces_sample(std::uint64_t run_id, std::uint64_t step) {
-  return {header(run_id, step), 812.5, 95.25, 33.125, 41.5, 717.25, -12.5, 0.0625, 0.0185};
+  return {header(run_id, step), 812.5, 95.25, 33.125, 41.5, 717.25, -12.5, 0.0625, 0.0185, 14.9375};
 }
 inline RunControl control_sample(std::uint64_t run_id, std::uint64_t step) {
   return {header(run_id, step), ControlKind::failure, Role::coupler, Role::terrain, 2.5e-6, 1.5e-6,

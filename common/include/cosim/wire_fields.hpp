@@ -96,7 +96,8 @@
   F(double, drawbar_pull_N, 0.0)                            \
   F(double, net_longitudinal_pressure_force_N, 0.0)         \
   F(double, sinkage_m, 0.0)                                 \
-  F(double, contact_area_m2, 0.0)
+  F(double, contact_area_m2, 0.0)                           \
+  F(double, rolling_resistance_moment_Nm, 0.0) /* RRM: F5 = RRM / r */
 
 // Start handshake, run start and stop, liveness and failures.
 #define COSIM_WIRE_FIELDS_RunControl(F)                                                     \
