@@ -36,6 +36,9 @@ void expect(const V& got, const V& want, const char* topic, const char* field) {
   throw Error(std::string(topic) + "." + field + " differs from what was sent (sizes " + std::to_string(got.size()) +
               " and " + std::to_string(want.size()) + ", first difference at " + std::to_string(i) + ")");
 }
+void expect(double got, double want, const char* topic, const char* field) {
+  if (!(got == want)) throw Error(std::string(topic) + "." + field + " differs from what was sent");
+}
 void expect_header(const SampleHeader& got, const SampleHeader& want, const char* topic) {
   if (got.run_id != want.run_id || got.step != want.step || got.sim_time_s != want.sim_time_s)
     throw Error(std::string(topic) + ".header differs from what was sent (step " + std::to_string(got.step) +
@@ -115,50 +118,28 @@ ContactLoads make_loads(std::uint64_t run_id, std::uint64_t step, int nodes) {
   return l;
 }
 
+// Every field of the topic (cosim/wire_fields.hpp) against what was sent.
+#define COSIM_PROBE_EXPECT_FIELD(type, name, init) expect(got.name, w.name, topic, #name);
+#define COSIM_PROBE_EXPECT_SAMPLE(T)                         \
+  void expect_sent(const T& got, const T& w) {               \
+    const char* topic = #T;                                  \
+    expect_header(got.header, w.header, topic);              \
+    COSIM_WIRE_FIELDS_##T(COSIM_PROBE_EXPECT_FIELD)          \
+  }
+COSIM_PROBE_EXPECT_SAMPLE(SurfaceMesh)
+COSIM_PROBE_EXPECT_SAMPLE(SurfaceKinematics)
+COSIM_PROBE_EXPECT_SAMPLE(ContactLoads)
+#undef COSIM_PROBE_EXPECT_SAMPLE
+#undef COSIM_PROBE_EXPECT_FIELD
+
 void check_mesh(const SurfaceMesh& got, std::uint64_t run_id, int nodes) {
-  const SurfaceMesh w = make_mesh(run_id, nodes);
-  expect_header(got.header, w.header, "SurfaceMesh");
-  expect(got.node_ids, w.node_ids, "SurfaceMesh", "node_ids");
-  expect(got.x_m, w.x_m, "SurfaceMesh", "x_m");
-  expect(got.y_m, w.y_m, "SurfaceMesh", "y_m");
-  expect(got.z_m, w.z_m, "SurfaceMesh", "z_m");
-  expect(got.facet_nodes, w.facet_nodes, "SurfaceMesh", "facet_nodes");
-  expect(got.facet_tags, w.facet_tags, "SurfaceMesh", "facet_tags");
+  expect_sent(got, make_mesh(run_id, nodes));
 }
-
 void check_kinematics(const SurfaceKinematics& got, std::uint64_t run_id, std::uint64_t step, int nodes) {
-  const SurfaceKinematics w = make_kinematics(run_id, step, nodes);
-  expect_header(got.header, w.header, "SurfaceKinematics");
-  expect(got.nodes, w.nodes, "SurfaceKinematics", "nodes");
-  expect(got.x_m, w.x_m, "SurfaceKinematics", "x_m");
-  expect(got.y_m, w.y_m, "SurfaceKinematics", "y_m");
-  expect(got.z_m, w.z_m, "SurfaceKinematics", "z_m");
-  expect(got.vx_mps, w.vx_mps, "SurfaceKinematics", "vx_mps");
-  expect(got.vy_mps, w.vy_mps, "SurfaceKinematics", "vy_mps");
-  expect(got.vz_mps, w.vz_mps, "SurfaceKinematics", "vz_mps");
-  expect(got.facets, w.facets, "SurfaceKinematics", "facets");
-  expect(got.friction_coefficient, w.friction_coefficient, "SurfaceKinematics", "friction_coefficient");
+  expect_sent(got, make_kinematics(run_id, step, nodes));
 }
-
 void check_loads(const ContactLoads& got, std::uint64_t run_id, std::uint64_t step, int nodes) {
-  const ContactLoads w = make_loads(run_id, step, nodes);
-  expect_header(got.header, w.header, "ContactLoads");
-  expect(got.nodes, w.nodes, "ContactLoads", "nodes");
-  expect(got.fx_N, w.fx_N, "ContactLoads", "fx_N");
-  expect(got.fy_N, w.fy_N, "ContactLoads", "fy_N");
-  expect(got.fz_N, w.fz_N, "ContactLoads", "fz_N");
-  expect(got.facets, w.facets, "ContactLoads", "facets");
-  expect(got.normal_force_N, w.normal_force_N, "ContactLoads", "normal_force_N");
-  expect(got.pressure_x_N, w.pressure_x_N, "ContactLoads", "pressure_x_N");
-  expect(got.pressure_y_N, w.pressure_y_N, "ContactLoads", "pressure_y_N");
-  expect(got.pressure_z_N, w.pressure_z_N, "ContactLoads", "pressure_z_N");
-  expect(got.tangential_x_N, w.tangential_x_N, "ContactLoads", "tangential_x_N");
-  expect(got.tangential_y_N, w.tangential_y_N, "ContactLoads", "tangential_y_N");
-  expect(got.tangential_z_N, w.tangential_z_N, "ContactLoads", "tangential_z_N");
-  expect(got.contact_area_m2, w.contact_area_m2, "ContactLoads", "contact_area_m2");
-  expect(got.pressure_Pa, w.pressure_Pa, "ContactLoads", "pressure_Pa");
-  if (got.particle_reach_z_m != w.particle_reach_z_m)
-    throw Error("ContactLoads.particle_reach_z_m differs from what was sent");
+  expect_sent(got, make_loads(run_id, step, nodes));
 }
 
 ProbeResult run_ping(const ProbeOptions& o) {
