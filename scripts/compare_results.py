@@ -29,6 +29,7 @@ SKIPPED_KEYS = {
     "performance", "wall_s", "wall_time_s", "wall_this_attempt_s", "revision", "source_revision",
     "out_dir", "threads", "omp_threads", "started_at", "finished_at", "date", "host", "run_id",
     "scene_file", "overrides", "dds", "plots", "exchange_wait_s", "compute_s", "ended_after_s",
+    "dds_domain", "rejected_samples",  # where the run talked, and other runs' samples it dropped there
     "participants",  # the launcher's process table: its wall times; each process's summary is compared itself
 }
 
