@@ -81,4 +81,20 @@ void fill_facet_friction(const std::vector<FacetTag>& tags, const std::vector<st
   }
 }
 
+void keep_facets_with_friction(const std::vector<FacetTag>& tags, const std::vector<double>& mu_of_facet,
+                               std::uint64_t step, std::vector<std::uint32_t>& facets,
+                               std::vector<double>& friction_coefficient) {
+  std::size_t kept = 0;
+  friction_coefficient.resize(facets.size());
+  for (std::size_t i = 0; i < facets.size(); ++i) {
+    const auto f = facets[i];
+    if (f >= mu_of_facet.size())
+      throw cosim::Error("SurfaceKinematics of step " + std::to_string(step) + ": facet " + std::to_string(f) +
+                         " is not in the surface mesh");
+    if (tags[f] == FacetTag::sipe_wall) continue;
+    facets[kept] = f, friction_coefficient[kept] = mu_of_facet[f], ++kept;
+  }
+  facets.resize(kept), friction_coefficient.resize(kept);
+}
+
 }  // namespace coupler

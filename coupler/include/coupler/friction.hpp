@@ -57,4 +57,16 @@ void fill_facet_friction(const std::vector<FacetTag>& tags, const std::vector<st
                          bool tread_has_sipes, TerrainKind terrain, const FrictionRules& rules,
                          std::vector<double>& mu);
 
+// The facets of one exchange handed on to the terrain, each with its mu: the
+// listed `facets` (indices into the surface) lose their sipe walls, and
+// `friction_coefficient` gets mu_of_facet[f] for each facet f kept, in order.
+// Sipe walls are not handed on: a sipe is a slit (0.6 mm) that no particle
+// enters, and its effect on the snow is the tread top's equivalent coefficient
+// (thesis 4.4, 6.1); particles would otherwise be caught between its two
+// coincident walls. `tags` and `mu_of_facet` cover every surface facet. Throws
+// cosim::Error naming the SurfaceKinematics of `step` for a facet not in the surface.
+void keep_facets_with_friction(const std::vector<FacetTag>& tags, const std::vector<double>& mu_of_facet,
+                               std::uint64_t step, std::vector<std::uint32_t>& facets,
+                               std::vector<double>& friction_coefficient);
+
 }  // namespace coupler
