@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <string>
 
 #include "cosim/error.hpp"
+#include "cosim/scene_io.hpp"
 #include "coupler/friction.hpp"
+#include "coupler/scene_settings.hpp"
 
 using coupler::FacetTag;
 using coupler::TerrainKind;
@@ -28,17 +31,25 @@ void expect_error(Fn fn, const std::string& part) {
   }
 }
 
+// The rules of a scene whose coupling section leaves friction to the schema's
+// defaults (configs/schema/scene.proto): the thesis's coefficients.
+coupler::FrictionRules thesis_rules() {
+  cosim::LoadedScene scene;
+  cosim::fill_schema_defaults(*scene.message.mutable_coupling());
+  return coupler::friction_rules(scene);
+}
+
 }  // namespace
 
-TEST(CouplerFriction, DefaultsAreTheThesisCoefficients) {
-  const coupler::FrictionRules rules;
+TEST(CouplerFriction, SchemaDefaultsAreTheThesisCoefficients) {
+  const coupler::FrictionRules rules = thesis_rules();
   EXPECT_EQ(rules.base_mu, 0.3);              // thesis 6.1 (Ella et al. 2013: ~0.3 without sipes)
   EXPECT_EQ(rules.sipe_equivalent_mu, 0.45);  // thesis 6.1 (~0.45 with sipes)
   EXPECT_TRUE(rules.tag_mu.empty());
 }
 
 TEST(CouplerFriction, SipeTreadTopGetsEquivalentCoefficientOnSnow) {
-  const coupler::FrictionRules rules;
+  const coupler::FrictionRules rules = thesis_rules();
   for (TerrainKind snow : {TerrainKind::snow_soft, TerrainKind::snow_hard}) {
     EXPECT_EQ(coupler::facet_mu(FacetTag::tread_top, true, snow, rules), 0.45);   // 6.1: tread top with sipes
     EXPECT_EQ(coupler::facet_mu(FacetTag::tread_top, false, snow, rules), 0.3);   // 6.1: block tread, smooth cap
@@ -51,19 +62,19 @@ TEST(CouplerFriction, SipeTreadTopGetsEquivalentCoefficientOnSnow) {
 }
 
 TEST(CouplerFriction, WaterIsFrictionlessWhateverTheRules) {
-  coupler::FrictionRules rules;
+  coupler::FrictionRules rules = thesis_rules();
   coupler::add_tag_override(rules, "tread_top", 0.8);
   for (FacetTag t : kAllTags)
     for (bool sipes : {false, true}) EXPECT_EQ(coupler::facet_mu(t, sipes, TerrainKind::water, rules), 0.0);  // 4.2
 }
 
 TEST(CouplerFriction, RigidRoadUsesBaseCoefficientEvenWithSipes) {
-  const coupler::FrictionRules rules;  // 4.3: rubber on rigid surface 0.3; sipes modelled, not equivalent
+  const coupler::FrictionRules rules = thesis_rules();  // 4.3: rubber on rigid surface 0.3; sipes modelled, not equivalent
   EXPECT_EQ(coupler::facet_mu(FacetTag::tread_top, true, TerrainKind::rigid_road, rules), 0.3);
 }
 
 TEST(CouplerFriction, OverridesWinOverSipeAndBaseRules) {
-  coupler::FrictionRules rules;
+  coupler::FrictionRules rules = thesis_rules();
   coupler::add_tag_override(rules, "shoulder", 0.5);
   coupler::add_tag_override(rules, "tread_top", 0.6);
   EXPECT_EQ(coupler::facet_mu(FacetTag::shoulder, false, TerrainKind::snow_soft, rules), 0.5);
@@ -74,18 +85,39 @@ TEST(CouplerFriction, OverridesWinOverSipeAndBaseRules) {
 TEST(CouplerFriction, FillsOneCoefficientPerFacet) {
   const std::vector<FacetTag> tags = {FacetTag::tread_top, FacetTag::groove_wall, FacetTag::tread_top,
                                       FacetTag::sidewall};
+  const coupler::FrictionRules rules = thesis_rules();
   std::vector<double> mu;
-  coupler::fill_facet_friction(tags, true, TerrainKind::snow_soft, {}, mu);
+  coupler::fill_facet_friction(tags, true, TerrainKind::snow_soft, rules, mu);
   EXPECT_EQ(mu, (std::vector<double>{0.45, 0.3, 0.45, 0.3}));
-  coupler::fill_facet_friction(tags, false, TerrainKind::snow_soft, {}, mu);
+  coupler::fill_facet_friction(tags, false, TerrainKind::snow_soft, rules, mu);
   EXPECT_EQ(mu, (std::vector<double>{0.3, 0.3, 0.3, 0.3}));
-  coupler::fill_facet_friction(tags, true, TerrainKind::water, {}, mu);
+  coupler::fill_facet_friction(tags, true, TerrainKind::water, rules, mu);
   EXPECT_EQ(mu, (std::vector<double>(4, 0.0)));
   // Subset, as SurfaceKinematics carries it: one entry per listed facet.
-  coupler::fill_facet_friction(tags, {3, 0}, true, TerrainKind::snow_hard, {}, mu);
+  coupler::fill_facet_friction(tags, {3, 0}, true, TerrainKind::snow_hard, rules, mu);
   EXPECT_EQ(mu, (std::vector<double>{0.3, 0.45}));
-  expect_error([&] { coupler::fill_facet_friction(tags, {4}, true, TerrainKind::snow_hard, {}, mu); },
+  expect_error([&] { coupler::fill_facet_friction(tags, {4}, true, TerrainKind::snow_hard, rules, mu); },
                "facet index 4 (entry 0) is out of range: the surface has 4 facets");
+}
+
+// What the coupler hands the terrain each exchange: the listed facets less the
+// sipe walls, each with its coefficient, in the order listed. Exact: values are copied.
+TEST(CouplerFriction, ListedFacetsKeepTheirCoefficientsAndLoseTheSipeWalls) {
+  const std::vector<FacetTag> tags = {FacetTag::tread_top, FacetTag::sipe_wall, FacetTag::groove_wall,
+                                      FacetTag::sipe_wall, FacetTag::sidewall};
+  const std::vector<double> mu_of_facet = {0.45, 0.45, 0.3, 0.45, 0.25};
+  std::vector<std::uint32_t> facets = {4, 3, 0, 1, 2};
+  std::vector<double> mu = {9.0};  // whatever the sample held
+  coupler::keep_facets_with_friction(tags, mu_of_facet, 7, facets, mu);
+  EXPECT_EQ(facets, (std::vector<std::uint32_t>{4, 0, 2}));
+  EXPECT_EQ(mu, (std::vector<double>{0.25, 0.45, 0.3}));
+  facets.clear();
+  coupler::keep_facets_with_friction(tags, mu_of_facet, 7, facets, mu);
+  EXPECT_TRUE(facets.empty());
+  EXPECT_TRUE(mu.empty());
+  facets = {0, 5};
+  expect_error([&] { coupler::keep_facets_with_friction(tags, mu_of_facet, 7, facets, mu); },
+               "SurfaceKinematics of step 7: facet 5 is not in the surface mesh");
 }
 
 TEST(CouplerFriction, RejectsNegativeOrNonFiniteCoefficients) {

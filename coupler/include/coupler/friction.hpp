@@ -29,9 +29,11 @@ using cosim::facet_tag_name;
 enum class TerrainKind { snow_soft, snow_hard, water, rigid_road };
 
 // The coefficients from which each facet's mu is decided (rules 1-4 above).
+// Their values come from the scene (coupler/scene_settings.hpp friction_rules),
+// whose schema holds the thesis's as defaults (configs/schema/scene.proto).
 struct FrictionRules {
-  double base_mu = 0.3;              // thesis 6.1: "0.3 friction coefficient" (Ella et al. 2013)
-  double sipe_equivalent_mu = 0.45;  // thesis 6.1: tread top of the tread with sipes
+  double base_mu = 0.0;             // coupling.base_friction_coefficient (thesis 6.1: 0.3, Ella et al. 2013)
+  double sipe_equivalent_mu = 0.0;  // coupling.sipe_equivalent_friction_coefficient (thesis 6.1: 0.45)
   std::map<FacetTag, double> tag_mu;  // per-tag overrides (rule 2)
 };
 
