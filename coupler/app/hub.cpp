@@ -8,6 +8,7 @@
 
 #include "coupler/coupling_scheme.hpp"
 #include "coupler/exchange_forces.hpp"
+#include "coupler/exchange_payload.hpp"
 #include "coupler/force_outputs.hpp"
 #include "coupler/force_window.hpp"
 #include "coupler/scene_checks.hpp"
@@ -102,7 +103,7 @@ class CouplerRun final : public cosim::Participant {
   DecompositionOptions decomposition_;
   std::uint64_t step_ = 0;
   double sim_time_ = 0.0;
-  double exchange_s_ = 0.0, nodes_sent_ = 0.0, facets_sent_ = 0.0, loaded_nodes_ = 0.0;
+  ExchangePayload payload_;
   bool joined_ = false;
 };
 
@@ -194,8 +195,8 @@ bool CouplerRun::advance() {
   // Friction per listed facet: the coupler's decision (thesis 4.3, 4.4, 6.1); sipe walls stay behind.
   keep_facets_with_friction(topology_.facet_tags, mu_of_facet_, step_, k_.facets, k_.friction_coefficient);
   terrain_kinematics_out_->write(k_);  // exchange, out: the surface with its friction, to the terrain
-  exchange_s_ += seconds_since(t0);
-  nodes_sent_ += k_.nodes.size(), facets_sent_ += k_.facets.size();
+  payload_.forwarding_s += seconds_since(t0);
+  payload_.nodes_sent += k_.nodes.size(), payload_.facets_sent += k_.facets.size();
   // Exchange, in: the wheel and the terrain's loads of this window; out: the loads to the tyre.
   if (!session_.wait_step(*wheel_in_, *wheel_filter_, step_, wheel_, "WheelState", tp::Role::tyre)) return false;
   check_wheel_state(wheel_, "WheelState of step " + std::to_string(step_));
@@ -205,8 +206,8 @@ bool CouplerRun::advance() {
   cosim::check_surface_loads(checked_loads_, topology_, "ContactLoads of step " + std::to_string(step_));
   const auto t1 = Clock::now();
   tyre_loads_out_->write(loads_);
-  exchange_s_ += seconds_since(t1);
-  loaded_nodes_ += loads_.nodes.size();
+  payload_.forwarding_s += seconds_since(t1);
+  payload_.loaded_nodes += loads_.nodes.size();
   sim_time_ = k_.header.sim_time_s;
   // The decomposition (thesis ch. 2), from the current facet geometry.
   surface_.update(k_);
@@ -226,32 +227,22 @@ bool CouplerRun::advance() {
 // window one array per column, the surface's node positions, the run's counters.
 void CouplerRun::save(cosim::CheckpointWriter& out) const {
   means_.save(out, "coupler.window.");
-  out.put("coupler.x_m", surface_.x_m);
-  out.put("coupler.y_m", surface_.y_m);
-  out.put("coupler.z_m", surface_.z_m);
+  surface_.save(out, "coupler.");
   out.put_value("coupler.time_s", sim_time_);
   out.put_value("coupler.decomposition_residual_max_N", residuals_.largest_residual_N);
   out.put_value("coupler.largest_force_N", residuals_.largest_force_N);
-  out.put_value("coupler.forwarding_s", exchange_s_);
-  out.put_value("coupler.nodes_sent", nodes_sent_);
-  out.put_value("coupler.facets_sent", facets_sent_);
-  out.put_value("coupler.loaded_nodes", loaded_nodes_);
+  payload_.save(out, "coupler.");
   out.put_value("coupler.coupling_window_s", window_.window_s);
   out.put_value("coupler.step", step_);
 }
 
 void CouplerRun::restore(const cosim::CheckpointReader& in) {
   means_.restore(in, "coupler.window.");
-  surface_.x_m = in.get<double>("coupler.x_m", surface_.x_m.size());
-  surface_.y_m = in.get<double>("coupler.y_m", surface_.y_m.size());
-  surface_.z_m = in.get<double>("coupler.z_m", surface_.z_m.size());
+  surface_.restore(in, "coupler.");
   sim_time_ = in.get_value<double>("coupler.time_s");
   residuals_.largest_residual_N = in.get_value<double>("coupler.decomposition_residual_max_N");
   residuals_.largest_force_N = in.get_value<double>("coupler.largest_force_N");
-  exchange_s_ = in.get_value<double>("coupler.forwarding_s");
-  nodes_sent_ = in.get_value<double>("coupler.nodes_sent");
-  facets_sent_ = in.get_value<double>("coupler.facets_sent");
-  loaded_nodes_ = in.get_value<double>("coupler.loaded_nodes");
+  payload_.restore(in, "coupler.");
   const double window_s = in.get_value<double>("coupler.coupling_window_s");
   if (window_s != window_.window_s)
     throw cosim::Error(in.path() + ": the checkpoint's coupling window " + cosim::number_text(window_s) +
@@ -270,12 +261,11 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
   residuals_.put_results(results);
   const double wall = record.wall_s();
   const double steps = static_cast<double>(step_);
-  summary["performance"] = {{"coupler_forwarding_s", exchange_s_}, {"steps_per_s", wall > 0 ? steps / wall : 0.0},
+  summary["performance"] = {{"coupler_forwarding_s", payload_.forwarding_s},
+                            {"steps_per_s", wall > 0 ? steps / wall : 0.0},
                             {"windows_per_s", wall > 0 ? steps / wall : 0.0},
                             {"coupling_window_s", window_.window_s}, {"tyre_substeps", window_.tyre_substeps}};
-  summary["payload"] = {{"mean_surface_nodes_per_step", step_ ? nodes_sent_ / steps : 0.0},
-                        {"mean_surface_facets_per_step", step_ ? facets_sent_ / steps : 0.0},
-                        {"mean_loaded_nodes_per_step", step_ ? loaded_nodes_ / steps : 0.0}};
+  summary["payload"] = payload_.per_exchange(step_);
   // Contact pressure of the last window, per contacted facet (a picture and its numbers).
   write_contact_pressure_map(record.path("contact_pressure.csv"), last_facets_);
 }

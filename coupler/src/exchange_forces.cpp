@@ -18,6 +18,18 @@ void SurfacePositions::update(const tp::SurfaceKinematics& k) {
   }
 }
 
+void SurfacePositions::save(cosim::CheckpointWriter& out, const std::string& prefix) const {
+  out.put(prefix + "x_m", x_m);
+  out.put(prefix + "y_m", y_m);
+  out.put(prefix + "z_m", z_m);
+}
+
+void SurfacePositions::restore(const cosim::CheckpointReader& in, const std::string& prefix) {
+  x_m = in.get<double>(prefix + "x_m", x_m.size());
+  y_m = in.get<double>(prefix + "y_m", y_m.size());
+  z_m = in.get<double>(prefix + "z_m", z_m.size());
+}
+
 ExchangeForces decompose_exchange(const SurfacePositions& surface, const cosim::SurfaceTopology& topology,
                                   const tp::WheelState& wheel, const tp::ContactLoads& loads, double rolling_radius_m,
                                   const DecompositionOptions& options) {

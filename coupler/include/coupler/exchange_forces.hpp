@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/checkpoint.hpp"
 #include "coupler/forces.hpp"
 #include "cosim/surface_exchange.hpp"
 #include "cosim_transport/topics.hpp"
@@ -20,6 +21,9 @@ namespace coupler {
 struct SurfacePositions {
   std::vector<double> x_m, y_m, z_m;
   void update(const cosim::transport::SurfaceKinematics& k);
+  // "<prefix>x_m", "<prefix>y_m", "<prefix>z_m"; restore keeps the node count.
+  void save(cosim::CheckpointWriter& out, const std::string& prefix) const;
+  void restore(const cosim::CheckpointReader& in, const std::string& prefix);
 };
 
 struct ExchangeForces {
