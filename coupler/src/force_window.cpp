@@ -124,22 +124,25 @@ void put_window_results(const ForceWindow& window, nlohmann::json& results) {
   results["averaging_window_s"] = m.window_s;
   if (m.count) results["averaging_window_start_s"] = m.start_s, results["averaging_window_end_s"] = m.end_s;
   results["averaged_steps"] = m.count;
-  results["traction_force_N"] = m.mean.traction_force_N;
-  results["motion_resistance_N"] = m.mean.motion_resistance_N;
-  results["groove_force_N"] = m.mean.groove_force_N;
-  results["rolling_resistance_moment_Nm"] = m.mean.rolling_resistance_moment_Nm;
-  results["rolling_resistance_force_N"] = m.mean.rolling_resistance_force_N;
-  results["drawbar_pull_N"] = m.mean.drawbar_pull_N;
-  // Beside it, what a test rig would measure: the tyre's longitudinal force on
-  // the rim, and the terrain's on the tyre (F2 + F3 - F1); the drawbar pull is the
-  // latter less F5 (docs/force_decomposition.md, "Drawbar pull and the rim's force").
-  results["rim_longitudinal_force_N"] = m.rim_longitudinal_force_N;
-  results["terrain_longitudinal_force_N"] = m.contact_force_x_N;
-  results["net_longitudinal_pressure_force_N"] = m.mean.net_longitudinal_pressure_force_N;
-  results["traction_minus_rrf_N"] = m.mean.traction_minus_rrf_N;
-  results["vertical_pressure_force_N"] = m.mean.vertical_pressure_force_N;
-  results["sinkage_m"] = m.mean.sinkage_m;
-  results["contact_area_m2"] = m.mean.contact_area_m2;
+  // Beside the decomposition's means, what a test rig would measure: the tyre's
+  // longitudinal force on the rim, and the terrain's on the tyre (F2 + F3 - F1);
+  // the drawbar pull is the latter less F5 (docs/force_decomposition.md,
+  // "Drawbar pull and the rim's force").
+  const std::pair<const char*, double> means[] = {
+      {"traction_force_N", m.mean.traction_force_N},
+      {"motion_resistance_N", m.mean.motion_resistance_N},
+      {"groove_force_N", m.mean.groove_force_N},
+      {"rolling_resistance_moment_Nm", m.mean.rolling_resistance_moment_Nm},
+      {"rolling_resistance_force_N", m.mean.rolling_resistance_force_N},
+      {"drawbar_pull_N", m.mean.drawbar_pull_N},
+      {"rim_longitudinal_force_N", m.rim_longitudinal_force_N},
+      {"terrain_longitudinal_force_N", m.contact_force_x_N},
+      {"net_longitudinal_pressure_force_N", m.mean.net_longitudinal_pressure_force_N},
+      {"traction_minus_rrf_N", m.mean.traction_minus_rrf_N},
+      {"vertical_pressure_force_N", m.mean.vertical_pressure_force_N},
+      {"sinkage_m", m.mean.sinkage_m},
+      {"contact_area_m2", m.mean.contact_area_m2}};
+  for (const auto& [name, value] : means) results[name] = value;
   if (m.has_drift) {
     nlohmann::json drift;
     for (int k = 0; k < WindowDrift::kCount; ++k) drift[WindowDrift::names[k]] = m.drift.second_less_first[k];
