@@ -52,20 +52,23 @@ nlohmann::json energy_json(const Energies& e) {
 // The tyre under the run skeleton (cosim/participant.hpp): axisymmetric
 // inflation and the 3D model in initialize(), then three stages of steps:
 // a check at rest after the transfer, loading onto the road or the terrain,
-// rolling. A step on a terrain reads, at a coupling window's start,
-//   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate
-// and  compute_forces -> add_terrain_loads -> integrate  on the window's other sub-steps.
-class TyreRun final : public PortParticipant {
+// rolling. A step on a terrain (solver3d.hpp) is a coupled participant's
+// (cosim_coupling/coupled_participant.hpp): before_exchange runs the stage
+// machine up to the next step; at a coupling window's start the exchange sends
+// the surface, computes the element forces while the terrain works and receives
+// the loads; after_exchange adds the loads, integrates and does the stage's
+// per-step work.
+class TyreRun final : public cosim::coupling::CoupledParticipant {
  public:
   TyreRun(const cosim::LoadedScene& loaded, const RunOptions& options)
-      : PortParticipant(options.terrain),
+      : CoupledParticipant(options.terrain),
+        port_(options.terrain),
         loaded_(loaded),
         scene_(loaded.message),
         t_(scene_.tyre()),
         options_(options) {}
 
   double initialize(cosim::RunRecord& record) override;
-  bool advance() override;
   double time_s() const override { return s_.time_s; }
   std::uint64_t steps() const override { return s_.step; }
   void output(cosim::RunRecord& record) override;
@@ -90,23 +93,21 @@ class TyreRun final : public PortParticipant {
   bool can_checkpoint() const override { return !options_.mesh_only && !t_.mesh_only(); }
   void save(cosim::CheckpointWriter& out) const override;
   void restore(const cosim::CheckpointReader& in) override;
-  bool coupled() const override { return port_ != nullptr; }
   std::optional<std::uint64_t> exchanges_completed() const override {
-    if (!joined_ || s_.terrain.substep != 0) return std::nullopt;
+    if (!joined() || s_.terrain.substep != 0) return std::nullopt;
     return s_.terrain.exchange;
   }
-  double coupling_window_s() const override { return joined_ ? window_s_ : 0.0; }
-  bool request_checkpoint_stop() override {
-    if (!joined_) return false;
-    port_->request_checkpoint_stop();
-    return true;
-  }
-  std::uint64_t checkpoint_stop_exchange() const override { return port_ ? port_->checkpoint_stop_exchange() : 0; }
 
  private:
   enum Stage { kTransferCheck, kLoading, kRolling, kDone };
-  // One step; on a terrain with the exchange stages at a window's start.
-  void step(const RimDrive& drive);
+  // The stage machine up to the next step; false when every stage is done.
+  bool before_exchange() override;
+  // On a terrain, at a coupling window's start.
+  bool exchange_due() const override { return joined() && s_.terrain.substep == 0; }
+  // Surface out, element forces, loads in.
+  bool exchange() override;
+  // The rest of the step, then the stage's per-step work.
+  bool after_exchange(bool peers_go_on) override;
   RimDrive drive_now() const;
   bool each_step();  // a stage's per-step work; true ends the stage early
   void begin_stage();
@@ -151,6 +152,7 @@ class TyreRun final : public PortParticipant {
         &r.fx_sum_, &r.rim_fx_sum_, &r.m_sum_, &r.fz_sum_, &r.h_sum_, &r.w_sum_, &r.road_fz_sum_, &r.road_area_sum_};
   }
 
+  TerrainPort* port_;  // null on the rigid road alone
   const cosim::LoadedScene& loaded_;
   const sc::Scene& scene_;
   const sc::TyreModel& t_;
@@ -161,8 +163,8 @@ class TyreRun final : public PortParticipant {
   std::unique_ptr<FrameWriter> frames_;
   cosim::CsvWriter* csv_ = nullptr;
   cosim::CsvWriter* road_csv_ = nullptr;  // a road under the terrain only
-  bool stepping_ = false, at_max_steps_ = false, joined_ = false;
-  double window_s_ = 0.0;  // the coupling window the coupler agreed
+  bool stepping_ = false, at_max_steps_ = false;
+  bool forces_computed_ = false;  // by this step's exchange
   double next_csv_ = 0.0, csv_interval_ = 0.0;
   std::uint64_t max_steps_ = 0;
   int centre_ = 0;
@@ -302,7 +304,7 @@ void TyreRun::save(cosim::CheckpointWriter& out) const {
                                                      at_max_steps_, hydroplaning_curve_, afloat_, in_window_,
                                                      std::uint64_t(n_w_)});
   hydroplaning_.save(out);
-  if (joined_) save_terrain_coupling(s_.terrain, window_s_, out);
+  if (joined()) save_terrain_coupling(s_.terrain, coupling_window_s(), out);
 }
 
 void TyreRun::restore(const cosim::CheckpointReader& in) {
@@ -331,27 +333,18 @@ void TyreRun::rejoin_terrain(const cosim::CheckpointReader& in, double own_dt_s)
   const double saved_window = restore_terrain_coupling(in, s_.terrain);
   const int saved_substeps = s_.terrain.substeps;
   s_.dt_s = own_dt_s;
-  window_s_ = connect_to_terrain(*port_, s_);
-  if (window_s_ != saved_window || s_.terrain.substeps != saved_substeps || s_.dt_s != saved_dt)
-    throw cosim::Error(in.path() + ": the coupling window agreed now (" + cosim::number_text(window_s_) + " s, " +
+  const double window_s = connect_to_terrain(*port_, s_);
+  if (window_s != saved_window || s_.terrain.substeps != saved_substeps || s_.dt_s != saved_dt)
+    throw cosim::Error(in.path() + ": the coupling window agreed now (" + cosim::number_text(window_s) + " s, " +
                        std::to_string(s_.terrain.substeps) + " sub-steps) is not the checkpoint's (" +
                        cosim::number_text(saved_window) + " s, " + std::to_string(saved_substeps) + ")");
   s_.time_stages = true;
-  joined_ = true;
+  joined_with_window(window_s);
   coupled_from_step_ = s_.step;
   coupled_from_wall_ = record_->wall_s();
 }
 
-// The exchange, at a coupling window's start (docs/coupling.md): the surface
-// at t_n goes out before the element forces, so that the terrain works on it
-// meanwhile; its loads of t_n come back after them and are held over the window.
-void TyreRun::step(const RimDrive& drive) {
-  if (joined_) return step_on_terrain(*model_, s_, *port_, drive, exchange_s_);
-  if (!step3d(*model_, s_, drive))
-    throw cosim::Error(non_finite_message(*model_, s_));
-}
-
-bool TyreRun::advance() {
+bool TyreRun::before_exchange() {
   // Stages end when their time is up (or their per-step work says so); a step
   // limit ends every stage at once (their results are those of the state reached).
   while (stage_ != kDone) {
@@ -362,13 +355,32 @@ bool TyreRun::advance() {
         at_max_steps_ = true;
         continue;
       }
-      step(drive_now());
-      stage_done_ = each_step();
       return true;
     }
     end_stage();
   }
   return false;
+}
+
+// The exchange, at a coupling window's start (docs/coupling.md): the surface
+// at t_n goes out before the element forces, so that the terrain works on it
+// meanwhile; its loads of t_n come back after them and are held over the window.
+bool TyreRun::exchange() {
+  exchange_with_terrain(*model_, s_, *port_, exchange_s_);
+  forces_computed_ = true;
+  return true;  // a terrain that is gone throws
+}
+
+bool TyreRun::after_exchange(bool) {
+  const RimDrive drive = drive_now();
+  if (joined()) {
+    complete_step_on_terrain(*model_, s_, drive, forces_computed_);
+    forces_computed_ = false;
+  } else if (!step3d(*model_, s_, drive)) {
+    throw cosim::Error(non_finite_message(*model_, s_));
+  }
+  stage_done_ = each_step();
+  return true;
 }
 
 void TyreRun::output(cosim::RunRecord&) {
@@ -467,8 +479,7 @@ void TyreRun::join_terrain() {
   // equal sub-steps no larger than its own stable step (one in the common-step scheme).
   const double window = connect_to_terrain(*port_, s_);
   s_.time_stages = true;  // the exchange's share of the wall time (summary "performance")
-  joined_ = true;
-  window_s_ = window;
+  joined_with_window(window);
   coupled_from_step_ = s_.step;
   coupled_from_wall_ = record_->wall_s();
   nlohmann::json& summary = record_->summary();
@@ -702,7 +713,7 @@ void TyreRun::report_hydroplaning(nlohmann::json& results) {
 void TyreRun::finalize(cosim::RunRecord& record) {
   if (!stepping_) return;  // mesh only, or the model was never built
   const Model3d& model = *model_;
-  if (!failed_) frames_->write(model, s_);
+  if (!failed()) frames_->write(model, s_);
   // A run stopped in its rolling stage (a signal, a failure) keeps the road force
   // against speed up to its last step: the hydroplaning reading of what it ran.
   if (stage_ == kRolling && stage_begun_ && road_under_terrain() && !hydroplaning_curve_) {
@@ -718,7 +729,7 @@ void TyreRun::finalize(cosim::RunRecord& record) {
   summary["performance"] = {{"steps_per_s", wall > 0 ? s_.step / wall : 0.0},
                             {"us_per_element_step", 1e6 * per_element_step},
                             {"core_us_per_element_step", 1e6 * per_element_step * cosim::max_threads()}};
-  if (!joined_) return;
+  if (!joined()) return;
   const auto& st = s_.stage_times;
   const double coupled_steps = double(s_.step - coupled_from_step_);
   const double compute = st.internal_forces_s + st.contact_s + st.rest_s;

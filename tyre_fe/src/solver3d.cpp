@@ -284,30 +284,41 @@ double connect_to_terrain(TerrainPort& port, State3d& s) {
   return window;
 }
 
-void step_on_terrain(const Model3d& m, State3d& s, TerrainPort& port, const RimDrive& drive, double& exchange_s) {
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+void send_surface(State3d& s, TerrainPort& port, double& exchange_s) {
   TerrainCoupling& terrain = s.terrain;
-  const bool window_start = terrain.substep == 0;
-  auto since = [](std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  if (window_start) {  // exchange, out
-    const auto t0 = std::chrono::steady_clock::now();
-    // A splash above the scene's band must meet the tread it flies at, not
-    // pass through a part of the surface the terrain was never sent.
-    const double band = std::max(terrain.band_m, terrain.loads.particle_reach_z_m);
-    terrain.highest_band_m = std::max(terrain.highest_band_m, band);
-    surface_near_terrain(terrain.surface, s, band, terrain.sent);
-    port.send(terrain.sent, s.rim);
-    commit_window_impulse(terrain);
-    exchange_s += since(t0);
-  }
-  compute_forces(m, s);
-  if (window_start) {  // exchange, in
-    const auto t0 = std::chrono::steady_clock::now();
-    port.receive(terrain.exchange, terrain.loads);
-    terrain.load_totals = cosim::totals(terrain.loads);
-    exchange_s += since(t0);
-  }
+  const auto t0 = std::chrono::steady_clock::now();
+  // A splash above the scene's band must meet the tread it flies at, not
+  // pass through a part of the surface the terrain was never sent.
+  const double band = std::max(terrain.band_m, terrain.loads.particle_reach_z_m);
+  terrain.highest_band_m = std::max(terrain.highest_band_m, band);
+  surface_near_terrain(terrain.surface, s, band, terrain.sent);
+  port.send(terrain.sent, s.rim);
+  commit_window_impulse(terrain);
+  exchange_s += seconds_since(t0);
+}
+
+void receive_loads(State3d& s, TerrainPort& port, double& exchange_s) {
+  TerrainCoupling& terrain = s.terrain;
+  const auto t0 = std::chrono::steady_clock::now();
+  port.receive(terrain.exchange, terrain.loads);
+  terrain.load_totals = cosim::totals(terrain.loads);
+  exchange_s += seconds_since(t0);
+}
+
+void exchange_with_terrain(const Model3d& m, State3d& s, TerrainPort& port, double& exchange_s) {
+  send_surface(s, port, exchange_s);
+  compute_forces(m, s);  // while the terrain works on the surface
+  receive_loads(s, port, exchange_s);
+}
+
+void complete_step_on_terrain(const Model3d& m, State3d& s, const RimDrive& drive, bool forces_computed) {
+  if (!forces_computed) compute_forces(m, s);
   add_terrain_loads(s);
   if (!integrate(m, s, drive))
     throw cosim::Error(non_finite_message(m, s));

@@ -1,20 +1,10 @@
 #include "tyre_fe/terrain_port.hpp"
 
-#include <exception>
 #include <unordered_map>
 
 #include "tyre_fe/solver3d.hpp"
 
 namespace tyre_fe {
-
-void report_failure(TerrainPort* port, const std::string& reason) noexcept {
-  if (!port) return;
-  try {
-    port->finish(true, reason);
-  } catch (const std::exception&) {
-    // The peers learn of the failure by their time-out instead.
-  }
-}
 
 ContactSurfaceDef make_contact_surface(const Mesh3D& mesh) {
   ContactSurfaceDef surface;

@@ -1,7 +1,8 @@
 // A tread block pushed into the terrain (thesis 3.4) under the run skeleton
 // (cosim/participant.hpp): the block's mesh and model in initialize(), then
 // steps of the tyre's explicit stages (solver3d.hpp) with the same exchange as
-// the tyre's (run.cpp): at a coupling window's start
+// the tyre's (run.cpp), a coupled participant's (cosim_coupling/coupled_participant.hpp):
+// at a coupling window's start
 //   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
 // the reference node (the "rim") moving the top face down along the push path,
 // or (sliding, thesis 4.3) carrying a load with z free and sliding along x.
@@ -22,13 +23,15 @@
 namespace tyre_fe {
 namespace {
 
-class TreadBlockRun final : public PortParticipant {
+// The block does not checkpoint, so it never declares itself joined
+// (joined_with_window: a participant that checkpoints between windows): a stop
+// signal ends its run at once.
+class TreadBlockRun final : public cosim::coupling::CoupledParticipant {
  public:
   TreadBlockRun(const cosim::LoadedScene& loaded, const RunOptions& options)
-      : PortParticipant(options.terrain), loaded_(loaded), options_(options) {}
+      : CoupledParticipant(options.terrain), port_(options.terrain), loaded_(loaded), options_(options) {}
 
   double initialize(cosim::RunRecord& record) override;
-  bool advance() override;
   double time_s() const override { return s_.time_s; }
   std::uint64_t steps() const override { return s_.step; }
   void output(cosim::RunRecord& record) override;
@@ -48,14 +51,25 @@ class TreadBlockRun final : public PortParticipant {
   }
 
  private:
+  // Until the push and hold (or the slide) are over; false then.
+  bool before_exchange() override { return s_.time_s < end_s_ - 0.5 * s_.dt_s; }
+  // At a coupling window's start.
+  bool exchange_due() const override { return s_.terrain.substep == 0; }
+  // Surface out, element forces, loads in.
+  bool exchange() override;
+  // The rest of the step, then the per-step sums.
+  bool after_exchange(bool peers_go_on) override;
   // Lowest point of the ribs' faces below the terrain surface z = 0 [m] (the reference node's path).
   double face_depth_m() const { return displacement_m() - setup_.initial_gap_m; }
   double displacement_m() const { return -s_.rim.z; }
+  // The push: the reference node's drive along its path.
+  RimDrive push_drive() const;
   // The slide (thesis 4.3): the reference node's drive now, its per-step sums and its results.
   RimDrive slide_drive() const;
   void slide_sums();
   void slide_results(nlohmann::json& results) const;
 
+  TerrainPort* port_;
   const cosim::LoadedScene& loaded_;
   RunOptions options_;
   TreadBlockSetup setup_;
@@ -71,6 +85,7 @@ class TreadBlockRun final : public PortParticipant {
   double sum_fx_ = 0, sum_road_fx_ = 0, sum_road_fz_ = 0, sum_area_ = 0, sum_water_fx_ = 0, sum_water_fz_ = 0;
   double sum_fx2_ = 0, window_x0_ = 0.0;
   long n_window_ = 0;
+  bool forces_computed_ = false;  // by this step's exchange
 };
 
 double TreadBlockRun::initialize(cosim::RunRecord& record) {
@@ -124,22 +139,27 @@ double TreadBlockRun::initialize(cosim::RunRecord& record) {
   return end_s_;
 }
 
-bool TreadBlockRun::advance() {
-  if (!(s_.time_s < end_s_ - 0.5 * s_.dt_s)) return false;
-  if (setup_.sliding()) {
-    step_on_terrain(*model_, s_, *port_, slide_drive(), exchange_s_);
-    slide_sums();
-    max_force_z_N_ = std::max(max_force_z_N_, s_.terrain.load_totals.force_N[2]);
-    return true;
-  }
-  // The reference node moves from d(t) to d(t + dt) in this step: the path is met exactly at every step.
+bool TreadBlockRun::exchange() {
+  exchange_with_terrain(*model_, s_, *port_, exchange_s_);
+  forces_computed_ = true;
+  return true;  // a terrain that is gone throws
+}
+
+bool TreadBlockRun::after_exchange(bool) {
+  complete_step_on_terrain(*model_, s_, setup_.sliding() ? slide_drive() : push_drive(), forces_computed_);
+  forces_computed_ = false;
+  if (setup_.sliding()) slide_sums();
+  max_force_z_N_ = std::max(max_force_z_N_, s_.terrain.load_totals.force_N[2]);
+  return true;
+}
+
+// The reference node moves from d(t) to d(t + dt) in this step: the path is met exactly at every step.
+RimDrive TreadBlockRun::push_drive() const {
   RimDrive drive;
   drive.prescribe_vz = true;
   drive.vertical_speed_m_per_s =
       -(push_displacement_m(setup_.path, s_.time_s + s_.dt_s) - push_displacement_m(setup_.path, s_.time_s)) / s_.dt_s;
-  step_on_terrain(*model_, s_, *port_, drive, exchange_s_);
-  max_force_z_N_ = std::max(max_force_z_N_, s_.terrain.load_totals.force_N[2]);
-  return true;
+  return drive;
 }
 
 RimDrive TreadBlockRun::slide_drive() const {
@@ -200,7 +220,7 @@ void TreadBlockRun::output(cosim::RunRecord&) {
 
 void TreadBlockRun::finalize(cosim::RunRecord& record) {
   if (!model_) return;
-  if (!failed_) frames_->write(*model_, s_);
+  if (!failed()) frames_->write(*model_, s_);
   nlohmann::json& results = record.results();
   const auto& f = s_.terrain.load_totals.force_N;
   results["face_depth_m"] = face_depth_m();

@@ -167,13 +167,23 @@ bool step3d(const Model3d& model, State3d& s, const RimDrive& drive);
 // sub-steps no larger than the stable step (s.dt_s, s.terrain.substeps). Returns the window.
 // A restart joins at its checkpoint's exchange (s.terrain.exchange) and time.
 double connect_to_terrain(TerrainPort& port, State3d& s);
-// One step on a terrain (docs/coupling.md): at a coupling window's start
-//   send surface -> compute_forces -> receive loads -> add_terrain_loads -> integrate,
+// A step on a terrain (docs/coupling.md) is, at a coupling window's start,
+//   send_surface -> compute_forces -> receive_loads -> add_terrain_loads -> integrate
 // so that the terrain works on the surface while the element forces are computed;
 // on the window's other sub-steps  compute_forces -> add_terrain_loads -> integrate.
-// Adds the wall time of the exchange to exchange_s; throws cosim::Error if the state
-// went non-finite or the terrain is gone.
-void step_on_terrain(const Model3d& model, State3d& s, TerrainPort& port, const RimDrive& drive, double& exchange_s);
+// A coupled run (cosim_coupling/coupled_participant.hpp) calls the first three as
+// its exchange (exchange_with_terrain) and the rest after it
+// (complete_step_on_terrain). The exchange's wall time is added to exchange_s.
+//
+// The surface near the terrain (below its band or the particles' last reach) out.
+void send_surface(State3d& s, TerrainPort& port, double& exchange_s);
+// The loads of the same exchange in, and their totals; throws cosim::Error if the terrain is gone.
+void receive_loads(State3d& s, TerrainPort& port, double& exchange_s);
+// send_surface -> compute_forces -> receive_loads.
+void exchange_with_terrain(const Model3d& model, State3d& s, TerrainPort& port, double& exchange_s);
+// compute_forces (unless the exchange computed them) -> add_terrain_loads ->
+// integrate; throws cosim::Error if the state went non-finite.
+void complete_step_on_terrain(const Model3d& model, State3d& s, const RimDrive& drive, bool forces_computed);
 
 // Kinetic damping (Cundall 1976; Underwood 1983): sets every velocity (nodes and
 // rim) to zero. Called when the kinetic energy has passed a peak, it drains the

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "cosim/participant.hpp"
 #include "cosim/surface_exchange.hpp"
+#include "cosim_coupling/coupled_participant.hpp"
 #include "tyre_fe/model3d.hpp"
 
 namespace tyre_fe {
@@ -43,9 +43,11 @@ ContactSurfaceDef make_contact_surface(const Model3d& model, const State3d& s);
 void surface_near_terrain(const ContactSurfaceDef& surface, const State3d& s, double band_m,
                           cosim::SurfaceState& out);
 
-class TerrainPort {
+// What the tyre exchanges with its peers; the end of the run, a failure and a
+// stop at a common checkpoint go through the link every participant shares
+// (cosim::coupling::PeerLink).
+class TerrainPort : public cosim::coupling::PeerLink {
  public:
-  virtual ~TerrainPort() = default;
   // Once, before the first coupled step: offers the surface and this solver's
   // stable step; returns the common step every participant will use.
   // `start_exchange`, `start_time_s`: where the run starts (a restart: its
@@ -56,35 +58,6 @@ class TerrainPort {
   virtual void send(const cosim::SurfaceState& surface, const RimState& rim) = 0;
   // The loads of the same exchange; throws cosim::Error if the terrain is gone.
   virtual void receive(std::uint64_t exchange, cosim::SurfaceLoads& loads) = 0;
-  // End of the run: normal stop (failed = false) or failure with a reason.
-  virtual void finish(bool failed, const std::string& reason) = 0;
-  // A stop signal: asks the run for a stop at a common checkpoint; the exchange
-  // named for it once known (0: none yet; docs/reliability.md).
-  virtual void request_checkpoint_stop() = 0;
-  virtual std::uint64_t checkpoint_stop_exchange() const = 0;
-};
-
-// A run that failed tells its peers through its port, if it has one; never throws
-// (if the message cannot go, the peers learn of the failure by their time-out).
-void report_failure(TerrainPort* port, const std::string& reason) noexcept;
-
-// A tyre_fe participant on a terrain port, or on none (a rigid road): at the run's
-// end it releases its peers, on a failure it tells them why. The tyre and the tread
-// block share this; what they step differs.
-class PortParticipant : public cosim::Participant {
- public:
-  void finish_peers() override {
-    if (port_) port_->finish(false, "");
-  }
-  void abort(const std::string& reason) noexcept override {
-    failed_ = true;
-    report_failure(port_, reason);
-  }
-
- protected:
-  explicit PortParticipant(TerrainPort* port) : port_(port) {}
-  TerrainPort* port_;
-  bool failed_ = false;
 };
 
 }  // namespace tyre_fe
