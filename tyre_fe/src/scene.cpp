@@ -232,8 +232,7 @@ TyreSetup tyre_setup(const cosim::LoadedScene& loaded) {
       solid.yeoh.C20_Pa = m.rubber().c20_pa();
       solid.yeoh.C30_Pa = m.rubber().c30_pa();
       solid.yeoh.density_kg_per_m3 = m.rubber().density_kg_per_m3();
-      const double ratio = m.rubber().bulk_to_shear_ratio() > 0 ? m.rubber().bulk_to_shear_ratio()
-                                                                 : s.bulk_to_shear_ratio;
+      const double ratio = rubber_bulk_to_shear_ratio(m.rubber(), s.bulk_to_shear_ratio);
       solid.yeoh.bulk_modulus_Pa = ratio * 2.0 * solid.yeoh.C10_Pa;
     } else {
       solid.kind = SolidMaterial::Kind::elastic;
@@ -262,6 +261,16 @@ CrossSection make_section(const TyreSetup& setup) {
           : make_cross_section(setup.size, setup.pattern, setup.mesh);
   if (setup.bead_tied_to_rim) tie_region_to_rim(section, Region::bead);
   return section;
+}
+
+double time_step_safety(const sc::Scene& scene) { return scene.time().cfl() > 0 ? scene.time().cfl() : 0.8; }
+
+double rubber_bulk_to_shear_ratio(const sc::YeohRubberMaterial& rubber, double body_ratio) {
+  return rubber.bulk_to_shear_ratio() > 0 ? rubber.bulk_to_shear_ratio() : body_ratio;
+}
+
+double averaging_window_s(const sc::TyreStages& st) {
+  return st.average_last_s() > 0 ? st.average_last_s() : 0.5 * st.rolling_s();
 }
 
 }  // namespace tyre_fe

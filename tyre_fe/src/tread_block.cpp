@@ -6,6 +6,7 @@
 
 #include "cosim/error.hpp"
 #include "cosim/ramp.hpp"
+#include "tyre_fe/scene.hpp"
 
 namespace tyre_fe {
 namespace sc = cosim::scene;
@@ -112,7 +113,7 @@ TreadBlockSetup tread_block_setup(const cosim::LoadedScene& loaded) {
     m.kind = SolidMaterial::Kind::yeoh;
     m.yeoh.C10_Pa = b.rubber().c10_pa(), m.yeoh.C20_Pa = b.rubber().c20_pa(), m.yeoh.C30_Pa = b.rubber().c30_pa();
     m.yeoh.density_kg_per_m3 = b.rubber().density_kg_per_m3();
-    const double ratio = b.rubber().bulk_to_shear_ratio() > 0 ? b.rubber().bulk_to_shear_ratio() : b.bulk_to_shear_ratio();
+    const double ratio = rubber_bulk_to_shear_ratio(b.rubber(), b.bulk_to_shear_ratio());
     m.yeoh.bulk_modulus_Pa = ratio * 2.0 * m.yeoh.C10_Pa;
   }
   s.materials.hourglass_coefficient = b.hourglass_coefficient();

@@ -17,6 +17,7 @@
 #include "tyre_fe/model3d.hpp"
 #include "tyre_fe/outputs.hpp"
 #include "tyre_fe/run.hpp"
+#include "tyre_fe/scene.hpp"
 #include "tyre_fe/solver3d.hpp"
 #include "tyre_fe/tread_block.hpp"
 
@@ -102,7 +103,7 @@ double TreadBlockRun::initialize(cosim::RunRecord& record) {
   summary["elements"] = mesh.hexes.size();
   if (options_.write_vtk) write_facets_vtk(record.path("surface.vtk"), mesh, mesh.nodes);
   Model3dOptions mo;
-  mo.time_step_safety = scene.time().cfl() > 0 ? scene.time().cfl() : 0.8;
+  mo.time_step_safety = time_step_safety(scene);
   model_ = std::make_unique<Model3d>(build_model3d(std::move(mesh), setup_.materials, CrossSection{}, mo));
   const Model3d& model = *model_;
   summary["time_step"] = {{"stable_dt_s", model.stable_dt_s}, {"mass_kg", model.physical_mass_kg}};
