@@ -330,8 +330,10 @@ void complete_step_on_terrain(const Model3d& m, State3d& s, const RimDrive& driv
 // largest contact load on a node in that step, with its node's mass (a load the
 // node cannot carry over the step shows here).
 std::string non_finite_message(const Model3d& m, const State3d& s) {
+  // Positions to the micrometre: a node on a plane of symmetry reads y = 0, not its round-off.
   auto text = [](double x, double y, double z) {
-    return "(" + cosim::number_text(x) + ", " + cosim::number_text(y) + ", " + cosim::number_text(z) + ") m";
+    auto um = [](double v) { return cosim::number_text(std::round(v * 1e6) / 1e6 + 0.0); };  // + 0: no "-0"
+    return "(" + um(x) + ", " + um(y) + ", " + um(z) + ") m";
   };
   std::string where;
   for (std::size_t e = 0; e < s.element_energy.size() && where.empty(); ++e)
