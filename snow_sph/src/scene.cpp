@@ -1,8 +1,10 @@
+// From a validated scene to the SPH terrain's runtime model (scene.hpp): the
+// materials, the kernel and settings, the walls, the particle lattices and the
+// rigid bodies. Validation is in scene_validation.cpp.
 #include "snow_sph/scene.hpp"
 
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include "cosim/error.hpp"
 #include "cosim/particle_lattice.hpp"
@@ -19,12 +21,6 @@ KernelType kernel_type(sc::Kernel k) {
     case sc::QUINTIC: return KernelType::quintic;
     default: return KernelType::cubic;
   }
-}
-
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 double snow_wave_speed(const sc::SnowMaterial& s) {
@@ -51,157 +47,6 @@ double max_sound_speed(const sc::SphTerrain& sph) {
     if (b.material().has_water()) c = std::max(c, water_sound_speed(b.material().water()));
   }
   return c;
-}
-
-void validate_sph_scene(const cosim::LoadedScene& loaded, cosim::ValidationReport& r) {
-  const sc::Scene& scene = loaded.message;
-  const auto root = loaded.locator();
-  if (scene.name().empty()) r.fail(root.where("name"), "a scene needs a name");
-  const auto time = root.child("time");
-  // A coupled terrain runs until the tyre ends the run (the tyre's stages set the time).
-  if (scene.has_sph() && !cosim::has_fe_body(scene) && !(scene.time().end_time_s() > 0))
-    r.fail(time.where("end_time_s"), "must be > 0 (got " + num(scene.time().end_time_s()) + ")");
-  if (!(scene.time().cfl() > 0 && scene.time().cfl() <= 1.0))
-    r.fail(time.where("cfl"), "must be in (0, 1] (got " + num(scene.time().cfl()) + ")");
-  if (scene.time().fixed_dt_s() < 0) r.fail(time.where("fixed_dt_s"), "must be >= 0");
-  if (scene.sph().cfl() < 0 || scene.sph().cfl() > 1.0)
-    r.fail(root.child("sph").where("cfl"), "must be in (0, 1] (got " + num(scene.sph().cfl()) + ")");
-  if (scene.output().vtk_interval_s() < 0)
-    r.fail(root.child("output").where("vtk_interval_s"), "must be >= 0");
-  if (!scene.has_sph()) return;
-
-  const sc::SphTerrain& sph = scene.sph();
-  const auto loc = root.child("sph");
-  const double dx = sph.particle_spacing_m();
-  if (sph.kernel() == sc::KERNEL_UNSET)
-    r.fail(loc.where("kernel"), "choose CUBIC, QUADRATIC or QUINTIC");
-  if (!(dx > 0)) r.fail(loc.where("particle_spacing_m"), "must be > 0 (got " + num(dx) + ")");
-  if (!(sph.smoothing_length_ratio() >= 0.8 && sph.smoothing_length_ratio() <= 3.0))
-    r.fail(loc.where("smoothing_length_ratio"),
-           "h / spacing must be in [0.8, 3] (got " + num(sph.smoothing_length_ratio()) + ")");
-  const auto& box = sph.container();
-  const auto box_loc = loc.child("container");
-  for (int a = 0; a < 3; ++a) {
-    if (!(coordinate(box.max(), a) > coordinate(box.min(), a)))
-      r.fail(box_loc.where("max"), std::string("container max must exceed min along ") + "xyz"[a]);
-  }
-  const double h = sph.smoothing_length_ratio() * dx;
-  const double support = (sph.kernel() == sc::QUINTIC ? 3.0 : 2.0) * h;
-  const double range = 1.1 * support;
-  for (int i = 0; i < sph.symmetry_planes_size(); ++i) {
-    if (sph.symmetry_planes(i) == sc::Z_MAX || sph.symmetry_planes(i) == sc::FACE_UNSET)
-      r.fail(loc.where("symmetry_planes", i), "the open top (Z_MAX) cannot be a symmetry plane");
-  }
-  for (int a = 0; a < 3; ++a) {
-    const double width = coordinate(box.max(), a) - coordinate(box.min(), a);
-    if (dx > 0 && width < range)
-      r.fail(box_loc.where("max"), std::string("container is narrower along ") + "xyz"[a] + " (" +
-                                       num(width) + " m) than the neighbour range " + num(range) + " m");
-  }
-  if (sph.blocks_size() == 0) r.fail(loc.where("blocks"), "at least one particle block is needed");
-  for (int b = 0; b < sph.blocks_size(); ++b) {
-    const auto& block = sph.blocks(b);
-    const auto bl = loc.child("blocks", b);
-    const auto rl = bl.child("region");
-    for (int a = 0; a < 3; ++a) {
-      const double lo = coordinate(block.region().min(), a), hi = coordinate(block.region().max(), a);
-      if (!(hi - lo >= dx))
-        r.fail(rl.where("max"), std::string("block must be at least one spacing thick along ") + "xyz"[a]);
-      if (lo < coordinate(box.min(), a) - 1e-12 || hi > coordinate(box.max(), a) + 1e-12)
-        r.fail(rl.where(lo < coordinate(box.min(), a) ? "min" : "max"),
-               std::string("block does not fit in the container along ") + "xyz"[a] + " (container " +
-                   num(coordinate(box.min(), a)) + " .. " + num(coordinate(box.max(), a)) + " m)");
-    }
-    const auto ml = loaded.locator_at(sc::Material::descriptor(),
-                                      "sph.blocks[" + std::to_string(b) + "].material");
-    const auto& mat = block.material();
-    if (mat.has_snow()) {
-      const auto& s = mat.snow();
-      const auto sl = ml.child("snow");
-      if (!(s.density_kg_per_m3() > 0)) r.fail(sl.where("density_kg_per_m3"), "must be > 0 (got " + num(s.density_kg_per_m3()) + ")");
-      if (!(s.youngs_modulus_pa() > 0)) r.fail(sl.where("youngs_modulus_Pa"), "must be > 0");
-      if (!(s.poisson_ratio() >= 0 && s.poisson_ratio() < 0.5))
-        r.fail(sl.where("poisson_ratio"), "must be in [0, 0.5) (got " + num(s.poisson_ratio()) + ")");
-      if (!(s.cohesion_pa() >= 0)) r.fail(sl.where("cohesion_Pa"), "must be >= 0");
-      if (!(s.friction_angle_deg() >= 0 && s.friction_angle_deg() < 90))
-        r.fail(sl.where("friction_angle_deg"), "must be in [0, 90) degrees");
-      if (!(s.cap_eccentricity() > 0)) r.fail(sl.where("cap_eccentricity"), "must be > 0");
-      if (!(s.transition_surface_alpha() >= 0 && s.transition_surface_alpha() < 1))
-        r.fail(sl.where("transition_surface_alpha"), "must be in [0, 1)");
-      if (s.flow_stress_ratio_k() != 1.0)
-        r.fail(sl.where("flow_stress_ratio_K"), "only K = 1 is supported (as in Abaqus/Explicit)");
-      if (s.initial_cap_volumetric_plastic_strain() < 0)
-        r.fail(sl.where("initial_cap_volumetric_plastic_strain"), "must be >= 0");
-      if (s.cap_hardening_size() < 2) r.fail(sl.where("cap_hardening"), "needs at least two points");
-      for (int k = 1; k < s.cap_hardening_size(); ++k) {
-        if (!(s.cap_hardening(k).hydrostatic_pressure_pa() > s.cap_hardening(k - 1).hydrostatic_pressure_pa() &&
-              s.cap_hardening(k).volumetric_plastic_strain() > s.cap_hardening(k - 1).volumetric_plastic_strain()))
-          r.fail(sl.where("cap_hardening", k), "pressure and strain must both increase along the table");
-      }
-    } else if (mat.has_water()) {
-      const auto& w = mat.water();
-      const auto wl = ml.child("water");
-      if (!(w.density_kg_per_m3() > 0)) r.fail(wl.where("density_kg_per_m3"), "must be > 0 (got " + num(w.density_kg_per_m3()) + ")");
-      if (!(w.reference_sound_speed_m_per_s() > 0)) r.fail(wl.where("reference_sound_speed_m_per_s"), "must be > 0");
-      if (w.sound_speed_override_m_per_s() < 0) r.fail(wl.where("sound_speed_override_m_per_s"), "must be >= 0");
-      if (w.dynamic_viscosity_pa_s() < 0) r.fail(wl.where("dynamic_viscosity_Pa_s"), "must be >= 0");
-      if (w.hugoniot_slope_s() < 0) r.fail(wl.where("hugoniot_slope_s"), "must be >= 0");
-      if (!(w.tension_limit_pa() >= 0)) r.fail(wl.where("tension_limit_Pa"), "must be >= 0 (0: no limit)");
-      if (!(w.valid_density_min_ratio() >= 0 && w.valid_density_min_ratio() < 1))
-        r.fail(wl.where("valid_density_min_ratio"), "must be in [0, 1) (0: no bound; got " + num(w.valid_density_min_ratio()) + ")");
-      if (!(w.valid_density_max_ratio() == 0 || w.valid_density_max_ratio() > 1))
-        r.fail(wl.where("valid_density_max_ratio"), "must be > 1, or 0 for no bound (got " + num(w.valid_density_max_ratio()) + ")");
-      if (w.gruneisen_ratio() != 0)
-        r.fail(wl.where("gruneisen_ratio"), "only Gamma0 = 0 is supported (internal energy is not tracked)");
-    } else {
-      r.fail(bl.where("material"), "give snow { ... }, water { ... } or material_file");
-    }
-  }
-  if (sph.quasi_static_damping_per_s() < 0)
-    r.fail(loc.where("quasi_static_damping_per_s"), "must be >= 0");
-  for (int k = 0; k < sph.rigid_bodies_size(); ++k) {
-    const auto& b = sph.rigid_bodies(k);
-    const auto l = loc.child("rigid_bodies", k);
-    if (b.name().empty()) r.fail(l.where("name"), "a body needs a name");
-    if (!(b.radius_m() > 0)) r.fail(l.where("radius_m"), "must be > 0");
-    if (!(b.thickness_m() > 0)) r.fail(l.where("thickness_m"), "must be > 0");
-    if (!(b.mass_kg() > 0)) r.fail(l.where("mass_kg"), "must be > 0");
-    if (b.friction_coefficient() < 0) r.fail(l.where("friction_coefficient"), "must be >= 0");
-    if (b.drive_case() == sc::RigidBody::DRIVE_NOT_SET)
-      r.fail(l.where("name"), "give applied_force_z_N or prescribed_velocity_z_m_per_s");
-    if (b.load_ramp_time_s() < 0) r.fail(l.where("load_ramp_time_s"), "must be >= 0");
-    if (b.rest_speed_m_per_s() < 0) r.fail(l.where("rest_speed_m_per_s"), "must be >= 0");
-    if (b.rest_hold_s() < 0) r.fail(l.where("rest_hold_s"), "must be >= 0");
-    if (b.rest_speed_m_per_s() > 0 && b.drive_case() == sc::RigidBody::kPrescribedVelocityZMPerS)
-      r.fail(l.where("rest_speed_m_per_s"), "a body driven at a prescribed speed never comes to rest; "
-                                            "the rest criterion needs applied_force_z_N");
-    const auto& c = b.initial_bottom_centre_m();
-    bool inside = true;
-    for (int a = 0; a < 2; ++a) {
-      const double lo = coordinate(box.min(), a), hi = coordinate(box.max(), a);
-      const double centre = coordinate(c, a);
-      if (centre < lo - 1e-12 || centre > hi + 1e-12) inside = false;
-    }
-    if (!inside)
-      r.fail(l.where("initial_bottom_centre_m"), "the body's axis lies outside the container");
-  }
-  // A fixed time step must be within the stable limit of the stiffest material.
-  const double c = max_sound_speed(sph);
-  if (scene.time().fixed_dt_s() > 0 && c > 0 && h > 0) {
-    const double limit = h / c;
-    if (scene.time().fixed_dt_s() > limit)
-      r.fail(time.where("fixed_dt_s"), "time step " + num(scene.time().fixed_dt_s()) +
-                                           " s is above the stable limit h / c = " + num(limit) +
-                                           " s (h = " + num(h) + " m, c = " + num(c) + " m/s)");
-  }
-}
-
-std::unique_ptr<cosim::LoadedScene> load_sph_scene(const std::string& path, const std::vector<std::string>& sets) {
-  auto scene = cosim::load_scene(path, sets);
-  cosim::ValidationReport report;
-  validate_sph_scene(*scene, report);
-  report.throw_if_failed();
-  return scene;
 }
 
 MaterialModel material_from_scene(const sc::Material& material) {
