@@ -92,10 +92,12 @@ MaterialModel material_from_scene(const sc::Material& material) {
   return m;
 }
 
-Model build_model(const sc::Scene& scene) {
+namespace {
+
+// The step's settings and the kernel, from the scene's time and sph sections
+// (sph.cfl, when set, before time.cfl).
+void set_settings_and_kernel(const sc::Scene& scene, Model& model) {
   const sc::SphTerrain& sph = scene.sph();
-  Model model;
-  model.name = scene.name();
   Settings& st = model.settings;
   st.cfl = sph.cfl() > 0 ? sph.cfl() : scene.time().cfl();
   st.fixed_dt = scene.time().fixed_dt_s();
@@ -114,8 +116,10 @@ Model build_model(const sc::Scene& scene) {
   st.spacing = dx;
   model.kernel = Kernel::make(kernel_type(sph.kernel()), sph.smoothing_length_ratio() * dx);
   st.skin = 0.1 * model.kernel.support;
+}
 
-  // Walls and symmetry planes.
+// Walls and symmetry planes: the container's five closed faces (the top is open).
+void add_container_planes(const sc::SphTerrain& sph, Model& model) {
   const sc::Face faces[5] = {sc::X_MIN, sc::X_MAX, sc::Y_MIN, sc::Y_MAX, sc::Z_MIN};
   const char* names[5] = {"X_MIN", "X_MAX", "Y_MIN", "Y_MAX", "Z_MIN"};
   for (int a = 0; a < 3; ++a) {
@@ -133,105 +137,136 @@ Model build_model(const sc::Scene& scene) {
     if (plane.symmetry) model.symmetry_factor *= 2.0;
     model.planes.push_back(plane);
   }
+}
 
-  // Particle blocks on a regular lattice, cell-centred in their region.
+// The material's P-wave modulus at rest [Pa]: the stiffest block's sets the
+// particles' contact stiffness with the bodies.
+double p_wave_modulus_Pa(const MaterialModel& mat) {
+  if (mat.kind == MaterialModel::Kind::snow) {
+    const double K = mat.mdpc.bulk_modulus_Pa(), G = mat.mdpc.shear_modulus_Pa();
+    return K + 4.0 * G / 3.0;
+  }
+  return mat.density0 * mat.eos.c0 * mat.eos.c0;
+}
+
+// The stress of particle q at `depth` [m] below its block's top, under gravity
+// g [m/s^2] when the block starts geostatic (else at rest unstressed); returns
+// its density.
+double set_initial_state(Particles& p, std::size_t q, const MaterialModel& mat, bool geostatic, double g,
+                         double depth) {
+  double rho = mat.density0;
+  if (mat.kind == MaterialModel::Kind::water) {
+    double pr = 0.0;
+    if (geostatic) {
+      // Hydrostatic pressure of the column above, density from the EOS.
+      pr = mat.density0 * g * depth;
+      rho = mat.eos.density_for_pressure(pr);
+    }
+    p.sxx[q] = p.syy[q] = p.szz[q] = -pr;
+    p.pressure[q] = pr;
+  } else {
+    p.eps_vol_pl[q] = mat.mdpc.initial_cap_volumetric_plastic_strain;
+    if (geostatic) {
+      const double sv = -mat.density0 * g * depth;
+      const ConfinedLayerState k0 = confined_layer_state(mat.mdpc, sv);
+      p.szz[q] = sv;
+      p.sxx[q] = p.syy[q] = k0.horizontal_stress_Pa;
+      p.eps_vol_pl[q] = k0.eps_vol_pl;
+      p.pressure[q] = -(p.sxx[q] + p.syy[q] + p.szz[q]) / 3.0;
+    }
+  }
+  return rho;
+}
+
+// A particle block on a regular lattice, cell-centred in its region: whole
+// layers of dx from the region's min corner (BlockLattice).
+void add_block_particles(const sc::ParticleBlock& block, std::uint16_t mat_index, Model& model) {
+  const double dx = model.settings.spacing;
+  const MaterialModel& mat = model.materials[mat_index];
   Particles& p = model.particles;
+  long n[3];
+  double lo[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = coordinate(block.region().min(), a);
+    n[a] = cosim::lattice_cells(lo[a], coordinate(block.region().max(), a), dx);
+  }
+  const double top = lo[2] + n[2] * dx;
+  BlockLattice& lattice = model.block_lattices.emplace_back();
+  for (int a = 0; a < 3; ++a) {
+    lattice.region_min[a] = lo[a];
+    lattice.region_max[a] = coordinate(block.region().max(), a);
+    lattice.filled_max[a] = lo[a] + n[a] * dx;
+  }
+  const double g = -model.settings.gravity[2];
+  for (long k = 0; k < n[2]; ++k)
+    for (long j = 0; j < n[1]; ++j)
+      for (long i = 0; i < n[0]; ++i) {
+        const std::size_t q = p.n_real++;
+        p.resize(p.n_real);
+        p.x[q] = lo[0] + (i + 0.5) * dx;
+        p.y[q] = lo[1] + (j + 0.5) * dx;
+        p.z[q] = lo[2] + (k + 0.5) * dx;
+        p.material[q] = mat_index;
+        p.id[q] = static_cast<std::uint32_t>(q);
+        const double depth = top - p.z[q];
+        const double rho = set_initial_state(p, q, mat, block.geostatic_initial_state(), g, depth);
+        p.density[q] = rho;
+        p.mass[q] = rho * dx * dx * dx;
+      }
+}
+
+// A rigid body of the scene, its mass that of the simulated part of a symmetric
+// model. Sinkage is measured from the lattice's top under its centre (RigidBody::surface_z).
+RigidBody body_from_scene(const sc::RigidBody& b, const Model& model) {
+  RigidBody body;
+  body.name = b.name();
+  body.radius = b.radius_m();
+  body.thickness = b.thickness_m();
+  body.x = b.initial_bottom_centre_m().x();
+  body.y = b.initial_bottom_centre_m().y();
+  body.z = body.z0 = b.initial_bottom_centre_m().z();
+  body.surface_z = std::numeric_limits<double>::quiet_NaN();
+  for (const BlockLattice& l : model.block_lattices)
+    if (body.x >= l.region_min[0] && body.x <= l.filled_max[0] && body.y >= l.region_min[1] &&
+        body.y <= l.filled_max[1] && !(l.filled_max[2] <= body.surface_z))  // the highest (NaN compares false)
+      body.surface_z = l.filled_max[2];
+  body.friction = b.friction_coefficient();
+  for (const MirrorPlane& plane : model.planes) {
+    if (!plane.symmetry) continue;
+    const double c = plane.axis == 0 ? body.x : body.y;
+    if (plane.axis < 2 && std::abs(c - plane.position) < 1e-9) body.symmetry_factor *= 2.0;
+  }
+  body.mass_domain = b.mass_kg() / body.symmetry_factor;
+  if (b.drive_case() == sc::RigidBody::kPrescribedVelocityZMPerS) {
+    body.prescribed_velocity = true;
+    body.prescribed_vz = b.prescribed_velocity_z_m_per_s();
+    body.vz = body.prescribed_vz;
+  } else {
+    body.applied_force_z_full = b.applied_force_z_n();
+    body.ramp_time = b.load_ramp_time_s();
+    body.vz = b.initial_velocity_z_m_per_s();
+    body.rest_speed = b.rest_speed_m_per_s();
+    body.rest_hold = b.rest_hold_s();
+  }
+  return body;
+}
+
+}  // namespace
+
+Model build_model(const sc::Scene& scene) {
+  const sc::SphTerrain& sph = scene.sph();
+  Model model;
+  model.name = scene.name();
+  set_settings_and_kernel(scene, model);
+  add_container_planes(sph, model);
   double max_modulus = 0.0;
   for (const auto& block : sph.blocks()) {
     model.materials.push_back(material_from_scene(block.material()));
-    MaterialModel& mat = model.materials.back();
-    const auto mat_index = static_cast<std::uint16_t>(model.materials.size() - 1);
-    long n[3];
-    double lo[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = coordinate(block.region().min(), a);
-      n[a] = cosim::lattice_cells(lo[a], coordinate(block.region().max(), a), dx);
-    }
-    const double top = lo[2] + n[2] * dx;
-    BlockLattice& lattice = model.block_lattices.emplace_back();
-    for (int a = 0; a < 3; ++a) {
-      lattice.region_min[a] = lo[a];
-      lattice.region_max[a] = coordinate(block.region().max(), a);
-      lattice.filled_max[a] = lo[a] + n[a] * dx;
-    }
-    const double g = -st.gravity[2];
-    if (mat.kind == MaterialModel::Kind::snow) {
-      const double K = mat.mdpc.bulk_modulus_Pa(), G = mat.mdpc.shear_modulus_Pa();
-      max_modulus = std::max(max_modulus, K + 4.0 * G / 3.0);
-    } else {
-      max_modulus = std::max(max_modulus, mat.density0 * mat.eos.c0 * mat.eos.c0);
-    }
-    for (long k = 0; k < n[2]; ++k)
-      for (long j = 0; j < n[1]; ++j)
-        for (long i = 0; i < n[0]; ++i) {
-          const std::size_t q = p.n_real++;
-          p.resize(p.n_real);
-          p.x[q] = lo[0] + (i + 0.5) * dx;
-          p.y[q] = lo[1] + (j + 0.5) * dx;
-          p.z[q] = lo[2] + (k + 0.5) * dx;
-          p.material[q] = mat_index;
-          p.id[q] = static_cast<std::uint32_t>(q);
-          const double depth = top - p.z[q];
-          double rho = mat.density0;
-          if (mat.kind == MaterialModel::Kind::water) {
-            double pr = 0.0;
-            if (block.geostatic_initial_state()) {
-              // Hydrostatic pressure of the column above, density from the EOS.
-              pr = mat.density0 * g * depth;
-              rho = mat.eos.density_for_pressure(pr);
-            }
-            p.sxx[q] = p.syy[q] = p.szz[q] = -pr;
-            p.pressure[q] = pr;
-          } else {
-            p.eps_vol_pl[q] = mat.mdpc.initial_cap_volumetric_plastic_strain;
-            if (block.geostatic_initial_state()) {
-              const double sv = -mat.density0 * g * depth;
-              const ConfinedLayerState k0 = confined_layer_state(mat.mdpc, sv);
-              p.szz[q] = sv;
-              p.sxx[q] = p.syy[q] = k0.horizontal_stress_Pa;
-              p.eps_vol_pl[q] = k0.eps_vol_pl;
-              p.pressure[q] = -(p.sxx[q] + p.syy[q] + p.szz[q]) / 3.0;
-            }
-          }
-          p.density[q] = rho;
-          p.mass[q] = rho * dx * dx * dx;
-        }
+    max_modulus = std::max(max_modulus, p_wave_modulus_Pa(model.materials.back()));
+    add_block_particles(block, static_cast<std::uint16_t>(model.materials.size() - 1), model);
   }
-  st.contact_stiffness = max_modulus * dx;
-
-  for (const auto& b : sph.rigid_bodies()) {
-    RigidBody body;
-    body.name = b.name();
-    body.radius = b.radius_m();
-    body.thickness = b.thickness_m();
-    body.x = b.initial_bottom_centre_m().x();
-    body.y = b.initial_bottom_centre_m().y();
-    body.z = body.z0 = b.initial_bottom_centre_m().z();
-    body.surface_z = std::numeric_limits<double>::quiet_NaN();
-    for (const BlockLattice& l : model.block_lattices)
-      if (body.x >= l.region_min[0] && body.x <= l.filled_max[0] && body.y >= l.region_min[1] &&
-          body.y <= l.filled_max[1] && !(l.filled_max[2] <= body.surface_z))  // the highest (NaN compares false)
-        body.surface_z = l.filled_max[2];
-    body.friction = b.friction_coefficient();
-    for (const MirrorPlane& plane : model.planes) {
-      if (!plane.symmetry) continue;
-      const double c = plane.axis == 0 ? body.x : body.y;
-      if (plane.axis < 2 && std::abs(c - plane.position) < 1e-9) body.symmetry_factor *= 2.0;
-    }
-    body.mass_domain = b.mass_kg() / body.symmetry_factor;
-    if (b.drive_case() == sc::RigidBody::kPrescribedVelocityZMPerS) {
-      body.prescribed_velocity = true;
-      body.prescribed_vz = b.prescribed_velocity_z_m_per_s();
-      body.vz = body.prescribed_vz;
-    } else {
-      body.applied_force_z_full = b.applied_force_z_n();
-      body.ramp_time = b.load_ramp_time_s();
-      body.vz = b.initial_velocity_z_m_per_s();
-      body.rest_speed = b.rest_speed_m_per_s();
-      body.rest_hold = b.rest_hold_s();
-    }
-    model.bodies.push_back(body);
-  }
+  model.settings.contact_stiffness = max_modulus * model.settings.spacing;
+  for (const auto& b : sph.rigid_bodies()) model.bodies.push_back(body_from_scene(b, model));
   return model;
 }
 
