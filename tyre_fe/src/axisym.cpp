@@ -73,78 +73,75 @@ void check_node(int node, std::size_t count, const char* list) {
     fail(std::string(list) + " has node " + std::to_string(node) + " out of range");
 }
 
-Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoadCase& load) {
+// The dofs held from the start: every dof of the fixed nodes (the rim's by default).
+std::vector<char> held_dofs(const CrossSection& s, const AxisymLoadCase& load) {
   const std::size_t n_nodes = s.nodes.size();
-  if (s.quad_region.size() != s.quads.size()) fail("quad_region size differs from quads");
-  Model model;
-  std::vector<double> node_mass(n_nodes, 0.0);  // kg per radian
   std::vector<char> fixed(kDofsPerNode * n_nodes, 0);
-  model.quads.reserve(s.quads.size());
   const std::vector<int>& fixed_nodes = load.fixed_nodes ? *load.fixed_nodes : s.rim_nodes;
   for (int node : fixed_nodes) {
     check_node(node, n_nodes, "fixed_nodes");
     for (int c = 0; c < kDofsPerNode; ++c) fixed[kDofsPerNode * node + c] = 1;
   }
-  double min_step = HUGE_VAL, min_shear_speed = HUGE_VAL;
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(HUGE_VAL), hi = -lo;
-  for (std::size_t q = 0; q < s.quads.size(); ++q) {
-    const int region = static_cast<int>(s.quad_region[q]);
-    if (region < 0 || region >= kRegionCount) fail("quad " + std::to_string(q) + " has no region");
-    const std::string name = region_name(s.quad_region[q]);
-    QuadData d{};
-    d.nodes = s.quads[q];
-    double X[4][2];
-    for (int i = 0; i < 4; ++i) {
-      check_node(d.nodes[i], n_nodes, "quads");
-      X[i][0] = s.nodes[d.nodes[i]][0];
-      X[i][1] = s.nodes[d.nodes[i]][1];
-      lo = lo.cwiseMin(s.nodes[d.nodes[i]]);
-      hi = hi.cwiseMax(s.nodes[d.nodes[i]]);
-    }
-    d.ref = quad4axi_reference(X);
-    d.solid = &m.solid[region];
-    d.shear_modulus_Pa = d.solid->shear_modulus_Pa();
-    double density = d.solid->density_kg_per_m3();
-    const double bulk = d.solid->bulk_modulus_Pa();
-    if (!(density > 0.0) || !(d.shear_modulus_Pa > 0.0) || !(bulk > 0.0))
-      fail("region " + name + " needs positive density, shear and bulk moduli");
+  return fixed;
+}
 
-    const RebarLayer& bar = m.rebar[region];
-    if (bar.area_m2 > 0.0) {
-      if (s.quad_layer_tangent.size() != s.quads.size() ||
-          s.quad_layer_thickness_m.size() != s.quads.size())
-        fail("rebar needs quad_layer_tangent and quad_layer_thickness_m for every quad");
-      const Eigen::Vector2d t = s.quad_layer_tangent[q];
-      const double thickness = s.quad_layer_thickness_m[q];
-      if (!(t.norm() > 0.5) || !(thickness > 0.0) || !(bar.spacing_m > 0.0) ||
-          !(bar.youngs_modulus_Pa > 0.0) || bar.density_kg_per_m3 < 0.0)
-        fail("rebar of region " + name + " in quad " + std::to_string(q) +
-             " needs a layer tangent, thickness, spacing and Young's modulus");
-      const Eigen::Vector2d tn = t.normalized();
-      d.a0 = Eigen::Vector3d(std::cos(bar.angle_rad) * tn[0], std::cos(bar.angle_rad) * tn[1],
-                             std::sin(bar.angle_rad));
-      d.volume_fraction = bar.area_m2 / (bar.spacing_m * thickness);
-      d.fibre_modulus_Pa = d.volume_fraction * bar.youngs_modulus_Pa;
-      density += d.volume_fraction * bar.density_kg_per_m3;
-    }
-    double step = quad4axi_stable_time_step_s(d.ref, density, bulk, d.shear_modulus_Pa,
-                                              m.hourglass_coefficient, d.fibre_modulus_Pa);
-    if (step < load.mass_scaling_time_step_s) {  // omega^2 ~ 1/rho
-      density *= (load.mass_scaling_time_step_s / step) * (load.mass_scaling_time_step_s / step);
-      step = load.mass_scaling_time_step_s;
-    }
-    // A quad whose nodes are all held (e.g. the bead tied to the rim) never deforms:
-    // it sets no step.
-    bool all_held = true;
-    for (int i = 0; i < 4; ++i) all_held = all_held && fixed[kDofsPerNode * d.nodes[i]];
-    if (!all_held) {
-      min_step = std::min(min_step, step);
-      min_shear_speed = std::min(min_shear_speed, std::sqrt(d.shear_modulus_Pa / density));
-    }
-    for (int i = 0; i < 4; ++i) node_mass[d.nodes[i]] += 0.25 * density * d.ref.volume_per_rad_m3;
-    model.quads.push_back(d);
+// The quad's bars, smeared into it as a volume fraction along a0 (r, y, theta);
+// adds their density to the quad's, `density`.
+void set_quad_rebar(const CrossSection& s, const RebarLayer& bar, std::size_t q, const std::string& name,
+                    QuadData& d, double& density) {
+  if (s.quad_layer_tangent.size() != s.quads.size() ||
+      s.quad_layer_thickness_m.size() != s.quads.size())
+    fail("rebar needs quad_layer_tangent and quad_layer_thickness_m for every quad");
+  const Eigen::Vector2d t = s.quad_layer_tangent[q];
+  const double thickness = s.quad_layer_thickness_m[q];
+  if (!(t.norm() > 0.5) || !(thickness > 0.0) || !(bar.spacing_m > 0.0) ||
+      !(bar.youngs_modulus_Pa > 0.0) || bar.density_kg_per_m3 < 0.0)
+    fail("rebar of region " + name + " in quad " + std::to_string(q) +
+         " needs a layer tangent, thickness, spacing and Young's modulus");
+  const Eigen::Vector2d tn = t.normalized();
+  d.a0 = Eigen::Vector3d(std::cos(bar.angle_rad) * tn[0], std::cos(bar.angle_rad) * tn[1],
+                         std::sin(bar.angle_rad));
+  d.volume_fraction = bar.area_m2 / (bar.spacing_m * thickness);
+  d.fibre_modulus_Pa = d.volume_fraction * bar.youngs_modulus_Pa;
+  density += d.volume_fraction * bar.density_kg_per_m3;
+}
+
+// Quad q's reference geometry, material and rebar; `density` is set to its
+// density with the bars [kg/m^3], and lo..hi grows to hold its nodes.
+QuadData make_quad(const CrossSection& s, const TyreMaterials& m, std::size_t q, double& density,
+                   Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
+  const std::size_t n_nodes = s.nodes.size();
+  const int region = static_cast<int>(s.quad_region[q]);
+  if (region < 0 || region >= kRegionCount) fail("quad " + std::to_string(q) + " has no region");
+  const std::string name = region_name(s.quad_region[q]);
+  QuadData d{};
+  d.nodes = s.quads[q];
+  double X[4][2];
+  for (int i = 0; i < 4; ++i) {
+    check_node(d.nodes[i], n_nodes, "quads");
+    X[i][0] = s.nodes[d.nodes[i]][0];
+    X[i][1] = s.nodes[d.nodes[i]][1];
+    lo = lo.cwiseMin(s.nodes[d.nodes[i]]);
+    hi = hi.cwiseMax(s.nodes[d.nodes[i]]);
   }
-  if (model.quads.empty()) fail("the cross-section has no quads");
+  d.ref = quad4axi_reference(X);
+  d.solid = &m.solid[region];
+  d.shear_modulus_Pa = d.solid->shear_modulus_Pa();
+  density = d.solid->density_kg_per_m3();
+  const double bulk = d.solid->bulk_modulus_Pa();
+  if (!(density > 0.0) || !(d.shear_modulus_Pa > 0.0) || !(bulk > 0.0))
+    fail("region " + name + " needs positive density, shear and bulk moduli");
+
+  const RebarLayer& bar = m.rebar[region];
+  if (bar.area_m2 > 0.0) set_quad_rebar(s, bar, q, name, d, density);
+  return d;
+}
+
+// After the quads: every node in a quad, the twist held on the axis and on the
+// listed nodes, y held on the listed nodes, the liner's edges valid.
+void hold_remaining_dofs(const CrossSection& s, const AxisymLoadCase& load, const std::vector<double>& node_mass,
+                         std::vector<char>& fixed) {
+  const std::size_t n_nodes = s.nodes.size();
   for (std::size_t i = 0; i < n_nodes; ++i) {
     if (!(node_mass[i] > 0.0)) fail("node " + std::to_string(i) + " belongs to no quad");
     // On the axis the twist is meaningless (no hoop displacement) and has no inertia.
@@ -162,6 +159,12 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
     check_node(node, n_nodes, "fixed_twist_nodes");
     fixed[kDofsPerNode * node + 2] = 1;
   }
+}
+
+// The per-dof mass, its inverse and the residual weight (see Model).
+void set_dof_masses(const CrossSection& s, const std::vector<double>& node_mass, const std::vector<char>& fixed,
+                    Model& model) {
+  const std::size_t n_nodes = s.nodes.size();
   model.mass.resize(kDofsPerNode * n_nodes);
   model.inverse_mass.resize(kDofsPerNode * n_nodes);
   model.residual_weight.resize(kDofsPerNode * n_nodes);
@@ -174,6 +177,40 @@ Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoa
       model.residual_weight[k] = fixed[k] ? 0.0 : c < 2 ? 1.0 : 1.0 / (R * R);
     }
   }
+}
+
+Model build_model(const CrossSection& s, const TyreMaterials& m, const AxisymLoadCase& load) {
+  const std::size_t n_nodes = s.nodes.size();
+  if (s.quad_region.size() != s.quads.size()) fail("quad_region size differs from quads");
+  Model model;
+  std::vector<double> node_mass(n_nodes, 0.0);  // kg per radian
+  std::vector<char> fixed = held_dofs(s, load);
+  model.quads.reserve(s.quads.size());
+  double min_step = HUGE_VAL, min_shear_speed = HUGE_VAL;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(HUGE_VAL), hi = -lo;
+  for (std::size_t q = 0; q < s.quads.size(); ++q) {
+    double density = 0.0;
+    const QuadData d = make_quad(s, m, q, density, lo, hi);
+    double step = quad4axi_stable_time_step_s(d.ref, density, d.solid->bulk_modulus_Pa(), d.shear_modulus_Pa,
+                                              m.hourglass_coefficient, d.fibre_modulus_Pa);
+    if (step < load.mass_scaling_time_step_s) {  // omega^2 ~ 1/rho
+      density *= (load.mass_scaling_time_step_s / step) * (load.mass_scaling_time_step_s / step);
+      step = load.mass_scaling_time_step_s;
+    }
+    // A quad whose nodes are all held (e.g. the bead tied to the rim) never deforms:
+    // it sets no step.
+    bool all_held = true;
+    for (int i = 0; i < 4; ++i) all_held = all_held && fixed[kDofsPerNode * d.nodes[i]];
+    if (!all_held) {
+      min_step = std::min(min_step, step);
+      min_shear_speed = std::min(min_shear_speed, std::sqrt(d.shear_modulus_Pa / density));
+    }
+    for (int i = 0; i < 4; ++i) node_mass[d.nodes[i]] += 0.25 * density * d.ref.volume_per_rad_m3;
+    model.quads.push_back(d);
+  }
+  if (model.quads.empty()) fail("the cross-section has no quads");
+  hold_remaining_dofs(s, load, node_mass, fixed);
+  set_dof_masses(s, node_mass, fixed, model);
   model.time_step_s = kSafetyFactor * min_step;
   model.ramp_time_s = load.ramp_time_s > 0.0
                           ? load.ramp_time_s
