@@ -268,99 +268,82 @@ void add_pressure(const CrossSection& s, const std::vector<double>& q, double p,
   }
 }
 
-}  // namespace
-
-AxisymResult solve_axisym(const CrossSection& section, const TyreMaterials& materials,
-                          const AxisymLoadCase& load,
-                          const std::function<void(long, double)>& progress) {
-  const Model model = build_model(section, materials, load);
+// The reference state (R, Y, 0) per node.
+std::vector<double> reference_state(const CrossSection& section) {
   const std::size_t n_nodes = section.nodes.size();
-  const std::size_t n_dofs = kDofsPerNode * n_nodes;
-  const double dt = model.time_step_s;
-  const double hg = materials.hourglass_coefficient;
-
-  std::vector<double> q0(n_dofs, 0.0);  // reference state (R, Y, 0)
+  std::vector<double> q0(kDofsPerNode * n_nodes, 0.0);
   for (std::size_t n = 0; n < n_nodes; ++n) {
     q0[kDofsPerNode * n] = section.nodes[n][0];
     q0[kDofsPerNode * n + 1] = section.nodes[n][1];
   }
-  std::vector<double> q = q0;
-  // v: velocities (r, y) and twist rates [rad/s] at half steps; f_int holds the
-  // moments M_i on the twist dofs.
-  std::vector<double> v(n_dofs, 0.0), f_int(n_dofs), f_ext(n_dofs);
-  std::vector<QuadState> states(model.quads.size());
-  AxisymResult result;
-  result.time_step_s = dt;
-  double previous_kinetic = 0.0;
+  return q0;
+}
 
-  for (long step = 0;; ++step) {
-    const double t = step * dt;
-    const double load_factor =
-        t >= model.ramp_time_s ? 1.0 : 0.5 * (1.0 - std::cos(kPi * t / model.ramp_time_s));
-
-    // Serial on purpose: a cross-section has ~1e2-1e3 quads (~0.1 us each), less work
-    // per step than an OpenMP fork/join costs (measured 8x slower on 2 threads with
-    // 120 quads). The result is therefore independent of the thread count.
-    for (std::size_t e = 0; e < model.quads.size(); ++e) evaluate_quad(model.quads[e], q, hg, states[e]);
-    std::fill(f_int.begin(), f_int.end(), 0.0);
-    std::fill(f_ext.begin(), f_ext.end(), 0.0);
-    double strain_energy = 0.0, hourglass_energy = 0.0;
-    for (std::size_t e = 0; e < model.quads.size(); ++e) {
-      const auto& nodes = model.quads[e].nodes;
-      for (int i = 0; i < 4; ++i) {
-        double* fn = &f_int[kDofsPerNode * nodes[i]];
-        fn[0] += states[e].f[i][0];
-        fn[1] += states[e].f[i][1];
-        fn[2] += states[e].moment[i];
-      }
-      strain_energy += states[e].strain_energy;
-      hourglass_energy += states[e].hourglass_energy;
+// The internal forces f_int (moments M_i on the twist dofs) at the state q, and
+// the strain and hourglass energies (per radian).
+void internal_forces(const Model& model, const std::vector<double>& q, double hg, std::vector<QuadState>& states,
+                     std::vector<double>& f_int, double& strain_energy, double& hourglass_energy) {
+  // Serial on purpose: a cross-section has ~1e2-1e3 quads (~0.1 us each), less work
+  // per step than an OpenMP fork/join costs (measured 8x slower on 2 threads with
+  // 120 quads). The result is therefore independent of the thread count.
+  for (std::size_t e = 0; e < model.quads.size(); ++e) evaluate_quad(model.quads[e], q, hg, states[e]);
+  std::fill(f_int.begin(), f_int.end(), 0.0);
+  strain_energy = 0.0;
+  hourglass_energy = 0.0;
+  for (std::size_t e = 0; e < model.quads.size(); ++e) {
+    const auto& nodes = model.quads[e].nodes;
+    for (int i = 0; i < 4; ++i) {
+      double* fn = &f_int[kDofsPerNode * nodes[i]];
+      fn[0] += states[e].f[i][0];
+      fn[1] += states[e].f[i][1];
+      fn[2] += states[e].moment[i];
     }
-    add_pressure(section, q, load.pressure_Pa * load_factor, f_ext);
-
-    // Twist dofs as hoop displacements R phi: force M / R, mass m (see axisym.hpp).
-    // Held dofs never move (u = 0, v = 0) and have weight 0.
-    double residual_sq = 0.0, load_sq = 0.0, work = 0.0, kinetic = 0.0;
-    for (std::size_t k = 0; k < n_dofs; ++k) {
-      const double r = f_ext[k] - f_int[k];
-      load_sq += f_ext[k] * f_ext[k];
-      residual_sq += model.residual_weight[k] * r * r;
-      work += f_ext[k] * (q[k] - q0[k]);
-      kinetic += 0.5 * model.mass[k] * v[k] * v[k];
-    }
-    if (!std::isfinite(residual_sq) || !std::isfinite(strain_energy))
-      fail("diverged at step " + std::to_string(step) + " (inverted element or unstable step)");
-    result.residual_ratio = load_sq > 0.0 ? std::sqrt(residual_sq / load_sq) : 0.0;
-    result.kinetic_energy_J_per_rad = kinetic;
-    result.strain_energy_J_per_rad = strain_energy;
-    result.hourglass_energy_J_per_rad = hourglass_energy;
-    result.steps = step;
-    const bool held = t >= model.ramp_time_s;
-    if (held && result.residual_ratio <= load.tolerance &&
-        kinetic <= load.tolerance * 0.5 * std::abs(work)) {
-      result.converged = true;
-      break;
-    }
-    if (load.pressure_Pa == 0.0 && residual_sq == 0.0) {  // nothing loads the section
-      result.converged = true;
-      break;
-    }
-    if (step >= load.max_steps) break;
-    if (progress && step % kProgressInterval == 0) progress(step, result.residual_ratio);
-
-    // Kinetic damping: restart from rest once the kinetic energy has passed a peak.
-    if (kinetic < previous_kinetic) {
-      std::fill(v.begin(), v.end(), 0.0);
-      previous_kinetic = 0.0;
-    } else {
-      previous_kinetic = kinetic;
-    }
-    for (std::size_t k = 0; k < n_dofs; ++k) {  // central difference, v at half steps
-      v[k] += dt * (f_ext[k] - f_int[k]) * model.inverse_mass[k];
-      q[k] += dt * v[k];
-    }
+    strain_energy += states[e].strain_energy;
+    hourglass_energy += states[e].hourglass_energy;
   }
+}
 
+// The sums that decide convergence, over every dof.
+struct StepMeasures {
+  double residual_sq = 0.0, load_sq = 0.0, work = 0.0, kinetic = 0.0;
+};
+
+StepMeasures measure_step(const Model& model, const std::vector<double>& q, const std::vector<double>& q0,
+                          const std::vector<double>& v, const std::vector<double>& f_int,
+                          const std::vector<double>& f_ext) {
+  // Twist dofs as hoop displacements R phi: force M / R, mass m (see axisym.hpp).
+  // Held dofs never move (u = 0, v = 0) and have weight 0.
+  double residual_sq = 0.0, load_sq = 0.0, work = 0.0, kinetic = 0.0;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const double r = f_ext[k] - f_int[k];
+    load_sq += f_ext[k] * f_ext[k];
+    residual_sq += model.residual_weight[k] * r * r;
+    work += f_ext[k] * (q[k] - q0[k]);
+    kinetic += 0.5 * model.mass[k] * v[k] * v[k];
+  }
+  return {residual_sq, load_sq, work, kinetic};
+}
+
+// Kinetic damping: restart from rest once the kinetic energy has passed a peak;
+// then one central-difference step, v at half steps.
+void advance(const Model& model, double kinetic, double& previous_kinetic, const std::vector<double>& f_int,
+             const std::vector<double>& f_ext, std::vector<double>& v, std::vector<double>& q) {
+  const double dt = model.time_step_s;
+  if (kinetic < previous_kinetic) {
+    std::fill(v.begin(), v.end(), 0.0);
+    previous_kinetic = 0.0;
+  } else {
+    previous_kinetic = kinetic;
+  }
+  for (std::size_t k = 0; k < q.size(); ++k) {  // central difference, v at half steps
+    v[k] += dt * (f_ext[k] - f_int[k]) * model.inverse_mass[k];
+    q[k] += dt * v[k];
+  }
+}
+
+// The nodes, twists, stresses and bar strains of the final state q.
+void write_final_state(const Model& model, const std::vector<double>& q, double hg, AxisymResult& result) {
+  const std::size_t n_nodes = q.size() / kDofsPerNode;
   result.nodes.resize(n_nodes);
   result.twist_rad.resize(n_nodes);
   for (std::size_t n = 0; n < n_nodes; ++n) {
@@ -374,6 +357,59 @@ AxisymResult solve_axisym(const CrossSection& section, const TyreMaterials& mate
     evaluate_quad(model.quads[e], q, hg, state, &result.quad_stress_Pa[e],
                   &result.quad_rebar_log_strain[e]);
   }
+}
+
+}  // namespace
+
+AxisymResult solve_axisym(const CrossSection& section, const TyreMaterials& materials,
+                          const AxisymLoadCase& load,
+                          const std::function<void(long, double)>& progress) {
+  const Model model = build_model(section, materials, load);
+  const std::size_t n_dofs = kDofsPerNode * section.nodes.size();
+  const double dt = model.time_step_s;
+  const double hg = materials.hourglass_coefficient;
+
+  const std::vector<double> q0 = reference_state(section);
+  std::vector<double> q = q0;
+  // v: velocities (r, y) and twist rates [rad/s] at half steps; f_int holds the
+  // moments M_i on the twist dofs.
+  std::vector<double> v(n_dofs, 0.0), f_int(n_dofs), f_ext(n_dofs);
+  std::vector<QuadState> states(model.quads.size());
+  AxisymResult result;
+  result.time_step_s = dt;
+  double previous_kinetic = 0.0;
+
+  for (long step = 0;; ++step) {
+    const double t = step * dt;
+    const double load_factor =
+        t >= model.ramp_time_s ? 1.0 : 0.5 * (1.0 - std::cos(kPi * t / model.ramp_time_s));
+    double strain_energy = 0.0, hourglass_energy = 0.0;
+    internal_forces(model, q, hg, states, f_int, strain_energy, hourglass_energy);
+    std::fill(f_ext.begin(), f_ext.end(), 0.0);
+    add_pressure(section, q, load.pressure_Pa * load_factor, f_ext);
+    const StepMeasures s = measure_step(model, q, q0, v, f_int, f_ext);
+    if (!std::isfinite(s.residual_sq) || !std::isfinite(strain_energy))
+      fail("diverged at step " + std::to_string(step) + " (inverted element or unstable step)");
+    result.residual_ratio = s.load_sq > 0.0 ? std::sqrt(s.residual_sq / s.load_sq) : 0.0;
+    result.kinetic_energy_J_per_rad = s.kinetic;
+    result.strain_energy_J_per_rad = strain_energy;
+    result.hourglass_energy_J_per_rad = hourglass_energy;
+    result.steps = step;
+    const bool held = t >= model.ramp_time_s;
+    if (held && result.residual_ratio <= load.tolerance &&
+        s.kinetic <= load.tolerance * 0.5 * std::abs(s.work)) {
+      result.converged = true;
+      break;
+    }
+    if (load.pressure_Pa == 0.0 && s.residual_sq == 0.0) {  // nothing loads the section
+      result.converged = true;
+      break;
+    }
+    if (step >= load.max_steps) break;
+    if (progress && step % kProgressInterval == 0) progress(step, result.residual_ratio);
+    advance(model, s.kinetic, previous_kinetic, f_int, f_ext, v, q);
+  }
+  write_final_state(model, q, hg, result);
   return result;
 }
 
