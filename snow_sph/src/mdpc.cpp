@@ -262,6 +262,107 @@ void check_parameters(const MdpcParameters& m) {
           "d + pb tan(beta) must be > 0 (the cap would have zero height)");
 }
 
+namespace {
+
+// The state a plastic return reaches: pressure p, Mises stress q, volumetric
+// plastic strain eps and the surface (1: Fs, 2: Fc, 3: Ft, 4: beyond the
+// tension apex; mdpc.hpp).
+struct ReturnPoint {
+  double p = 0.0, q = 0.0, eps = 0.0;
+  int surface = 0;
+};
+
+// 2a. Shear side: Fs (1.6) or Ft (1.8) with the non-associated potential Gs (1.10).
+// False if the trial state (p_tr, q_tr) is elastic.
+bool shear_side_return(const Derived& m, const Table& tab, double p_tr, double q_tr, double eps_n, double pa_n,
+                       ReturnPoint& out) {
+  double& p = out.p;
+  double& q = out.q;
+  double& eps = out.eps;
+  int& surface = out.surface;
+  const double f0 = q_tr - shear_side_qy(m, p_tr, pa_n);
+  if (f0 <= 0.0) return false;
+  // With mu = dlam/Gs: de = -mu tan^2(beta) (pa - p), q = q_tr / (1 + 3 G mu / c^2).
+  // Unknown v = 1 - q/q_tr; for given v, eliminating mu leaves
+  //   (1 - v + v k1 K)(eps - eps_n) + v k1 (pa(eps) - p_tr) = 0,  k1 = c^2 tan^2(beta) / (3 G),
+  // linear per table segment. f(0) = f0 > 0; f(1) = -q_y(pa) < 0 (p -> pa, q -> 0).
+  const double k1 = m.c * m.c * m.tb * m.tb / (3.0 * m.G);
+  auto state = [&](double v, double& pv, double& ev) {
+    ev = solve_segments(tab, eps_n, 1.0 - v + v * k1 * m.K, v * k1 * m.a1, v * k1 * (m.a0 - p_tr));
+    pv = p_tr - m.K * (ev - eps_n);
+  };
+  auto f = [&](double v) {
+    double pv, ev;
+    state(v, pv, ev);
+    return (1.0 - v) * q_tr - shear_side_qy(m, pv, m.a1 * table_pb(tab, ev) + m.a0);
+  };
+  const double ftol = 1e-14 * (q_tr + std::fabs(p_tr) * m.tb + m.d);
+  const Bracket r = brent(f, 0.0, f0, 1.0, f(1.0), ftol);
+  state(r.x, p, eps);
+  q = (1.0 - r.x) * q_tr;
+  const double pa = m.a1 * table_pb(tab, eps) + m.a0;
+  surface = (m.alpha > 0.0 && p > pa - m.alpha * (m.d + pa * m.tb) * m.sb) ? 3 : 1;
+  if (p_tr * m.tb < -m.d) surface = 4;  // trial beyond the tension apex
+  return true;
+}
+
+// 2b. Cap side: Fc (1.9), associated flow. Parametrize the cap by its angle theta,
+// with unknown u = sin(theta), cs = cos(theta) = sqrt(1 - u^2):
+//   g = p - pa = R X cs,  q = c X u,  X = d + pa tan(beta),
+// where dFc/dp = cs, dFc/dq = (R/c) u. Then
+//   de = dlam cs,  q = q_tr - 3 G (R/c) dlam u,
+// and for given u, p_tr - K de = pa(eps) + R X cs is linear per table segment.
+// Flow residual (times cs, to stay bounded at the cap top):
+//   F(u) = q_tr cs - u (3 G (R/c) de + c X cs).
+// On [u_min, 1], where de >= 0 (u_min^2 = 1 - min(1, g0 / (R X_n))^2), F / cs is
+// strictly decreasing and F(u_min) > 0 for a trial outside the cap: a unique root.
+// Upper bracket: u_hi = q_tr / (c X_n) has F <= 0 (X only grows and q only falls),
+// and is close to the root for small increments; else u_hi = 1, F(1) = -3G(R/c) de < 0.
+// A hydrostatic trial gives u = 0 and p = pb(eps) exactly.
+// False if the trial state (p_tr, q_tr) is elastic.
+bool cap_side_return(const Derived& m, const Table& tab, double p_tr, double q_tr, double eps_n, double pa_n,
+                     ReturnPoint& out) {
+  double& p = out.p;
+  double& q = out.q;
+  double& eps = out.eps;
+  int& surface = out.surface;
+  const double X_n = m.d + pa_n * m.tb;
+  const double g0 = p_tr - pa_n;
+  const double rq0 = m.R * q_tr / m.c;
+  const double f0 = std::sqrt(g0 * g0 + rq0 * rq0) - m.R * X_n;
+  if (f0 <= 0.0) return false;
+  const double k2 = 3.0 * m.G * m.R / m.c;
+  auto state = [&](double u, double& ev, double& cs) {
+    cs = std::sqrt(std::max(0.0, 1.0 - u * u));
+    const double h = 1.0 + m.R * m.tb * cs;
+    ev = solve_segments(tab, eps_n, m.K, m.a1 * h, m.a0 * h + m.R * m.d * cs - p_tr);
+  };
+  auto F = [&](double u) {
+    double ev, cs;
+    state(u, ev, cs);
+    const double X = m.d + (m.a1 * table_pb(tab, ev) + m.a0) * m.tb;
+    return q_tr * cs - u * (k2 * (ev - eps_n) + m.c * X * cs);
+  };
+  const double c_min = std::min(1.0, g0 / (m.R * X_n));
+  const double u_min = std::sqrt(std::max(0.0, 1.0 - c_min * c_min));
+  const double u_hi = std::min(1.0, q_tr / (m.c * X_n));
+  const double f_min = F(u_min), f_hi = F(u_hi);
+  double u = u_min;  // f_min <= 0: trial on the cap within round-off
+  if (f_hi >= 0.0) {
+    u = u_hi;  // only from round-off: u_hi exact, or p_tr ~ pa_n above the cap (corner)
+  } else if (f_min > 0.0) {
+    u = brent(F, u_min, f_min, u_hi, f_hi, 1e-14 * (q_tr + m.c * X_n)).x;
+  }
+  double cs;
+  state(u, eps, cs);
+  p = p_tr - m.K * (eps - eps_n);
+  q = std::min(q_tr, m.c * (m.d + (m.a1 * table_pb(tab, eps) + m.a0) * m.tb) * u);
+  surface = 2;
+  return true;
+}
+
+}  // namespace
+
 MdpcStepResult mdpc_update(const MdpcParameters& prm, const Eigen::Matrix3d& strain_increment,
                            Eigen::Matrix3d& stress, double& eps_vol_pl) {
   const Table tab = table_of(prm);
@@ -281,87 +382,16 @@ MdpcStepResult mdpc_update(const MdpcParameters& prm, const Eigen::Matrix3d& str
 
   const double eps_n = eps_vol_pl;
   const double pa_n = m.a1 * table_pb(tab, eps_n) + m.a0;
-  const double X_n = m.d + pa_n * m.tb;
-  double p, q, eps;
-  int surface;
-
-  if (p_tr <= pa_n) {
-    // 2a. Shear side: Fs (1.6) or Ft (1.8) with the non-associated potential Gs (1.10).
-    const double f0 = q_tr - shear_side_qy(m, p_tr, pa_n);
-    if (f0 <= 0.0) {
-      stress = sig_tr;
-      return {0.0, 0};
-    }
-    // With mu = dlam/Gs: de = -mu tan^2(beta) (pa - p), q = q_tr / (1 + 3 G mu / c^2).
-    // Unknown v = 1 - q/q_tr; for given v, eliminating mu leaves
-    //   (1 - v + v k1 K)(eps - eps_n) + v k1 (pa(eps) - p_tr) = 0,  k1 = c^2 tan^2(beta) / (3 G),
-    // linear per table segment. f(0) = f0 > 0; f(1) = -q_y(pa) < 0 (p -> pa, q -> 0).
-    const double k1 = m.c * m.c * m.tb * m.tb / (3.0 * m.G);
-    auto state = [&](double v, double& pv, double& ev) {
-      ev = solve_segments(tab, eps_n, 1.0 - v + v * k1 * m.K, v * k1 * m.a1, v * k1 * (m.a0 - p_tr));
-      pv = p_tr - m.K * (ev - eps_n);
-    };
-    auto f = [&](double v) {
-      double pv, ev;
-      state(v, pv, ev);
-      return (1.0 - v) * q_tr - shear_side_qy(m, pv, m.a1 * table_pb(tab, ev) + m.a0);
-    };
-    const double ftol = 1e-14 * (q_tr + std::fabs(p_tr) * m.tb + m.d);
-    const Bracket r = brent(f, 0.0, f0, 1.0, f(1.0), ftol);
-    state(r.x, p, eps);
-    q = (1.0 - r.x) * q_tr;
-    const double pa = m.a1 * table_pb(tab, eps) + m.a0;
-    surface = (m.alpha > 0.0 && p > pa - m.alpha * (m.d + pa * m.tb) * m.sb) ? 3 : 1;
-    if (p_tr * m.tb < -m.d) surface = 4;  // trial beyond the tension apex
-  } else {
-    // 2b. Cap side: Fc (1.9), associated flow. Parametrize the cap by its angle theta,
-    // with unknown u = sin(theta), cs = cos(theta) = sqrt(1 - u^2):
-    //   g = p - pa = R X cs,  q = c X u,  X = d + pa tan(beta),
-    // where dFc/dp = cs, dFc/dq = (R/c) u. Then
-    //   de = dlam cs,  q = q_tr - 3 G (R/c) dlam u,
-    // and for given u, p_tr - K de = pa(eps) + R X cs is linear per table segment.
-    // Flow residual (times cs, to stay bounded at the cap top):
-    //   F(u) = q_tr cs - u (3 G (R/c) de + c X cs).
-    // On [u_min, 1], where de >= 0 (u_min^2 = 1 - min(1, g0 / (R X_n))^2), F / cs is
-    // strictly decreasing and F(u_min) > 0 for a trial outside the cap: a unique root.
-    // Upper bracket: u_hi = q_tr / (c X_n) has F <= 0 (X only grows and q only falls),
-    // and is close to the root for small increments; else u_hi = 1, F(1) = -3G(R/c) de < 0.
-    // A hydrostatic trial gives u = 0 and p = pb(eps) exactly.
-    const double g0 = p_tr - pa_n;
-    const double rq0 = m.R * q_tr / m.c;
-    const double f0 = std::sqrt(g0 * g0 + rq0 * rq0) - m.R * X_n;
-    if (f0 <= 0.0) {
-      stress = sig_tr;
-      return {0.0, 0};
-    }
-    const double k2 = 3.0 * m.G * m.R / m.c;
-    auto state = [&](double u, double& ev, double& cs) {
-      cs = std::sqrt(std::max(0.0, 1.0 - u * u));
-      const double h = 1.0 + m.R * m.tb * cs;
-      ev = solve_segments(tab, eps_n, m.K, m.a1 * h, m.a0 * h + m.R * m.d * cs - p_tr);
-    };
-    auto F = [&](double u) {
-      double ev, cs;
-      state(u, ev, cs);
-      const double X = m.d + (m.a1 * table_pb(tab, ev) + m.a0) * m.tb;
-      return q_tr * cs - u * (k2 * (ev - eps_n) + m.c * X * cs);
-    };
-    const double c_min = std::min(1.0, g0 / (m.R * X_n));
-    const double u_min = std::sqrt(std::max(0.0, 1.0 - c_min * c_min));
-    const double u_hi = std::min(1.0, q_tr / (m.c * X_n));
-    const double f_min = F(u_min), f_hi = F(u_hi);
-    double u = u_min;  // f_min <= 0: trial on the cap within round-off
-    if (f_hi >= 0.0) {
-      u = u_hi;  // only from round-off: u_hi exact, or p_tr ~ pa_n above the cap (corner)
-    } else if (f_min > 0.0) {
-      u = brent(F, u_min, f_min, u_hi, f_hi, 1e-14 * (q_tr + m.c * X_n)).x;
-    }
-    double cs;
-    state(u, eps, cs);
-    p = p_tr - m.K * (eps - eps_n);
-    q = std::min(q_tr, m.c * (m.d + (m.a1 * table_pb(tab, eps) + m.a0) * m.tb) * u);
-    surface = 2;
+  // 2. A trial beyond the yield surface returns to it: on the shear side of the
+  //    cap's top (p_tr <= pa) or on the cap.
+  ReturnPoint r;
+  const bool plastic = p_tr <= pa_n ? shear_side_return(m, tab, p_tr, q_tr, eps_n, pa_n, r)
+                                    : cap_side_return(m, tab, p_tr, q_tr, eps_n, pa_n, r);
+  if (!plastic) {
+    stress = sig_tr;
+    return {0.0, 0};
   }
+  const double p = r.p, q = r.q, eps = r.eps;
 
   // 3. Stress update (radial in the deviatoric plane) and plastic work
   //    sigma : d eps_p = p de + s : (s_tr - s)/(2G) = p de + q (q_tr - q)/(3G).
@@ -369,7 +399,7 @@ MdpcStepResult mdpc_update(const MdpcParameters& prm, const Eigen::Matrix3d& str
   stress.diagonal().array() -= p;
   const double dvol = eps - eps_n;
   eps_vol_pl = eps;
-  return {p * dvol + q * (q_tr - q) / (3.0 * m.G), surface};
+  return {p * dvol + q * (q_tr - q) / (3.0 * m.G), r.surface};
 }
 
 ConfinedLayerState confined_layer_state(const MdpcParameters& prm, double sv) {
