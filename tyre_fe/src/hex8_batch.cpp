@@ -97,11 +97,12 @@ V add_rebar_stress(const Hex8Batch& b, const V F[3][3], V tau[3][3]) {
   return 0.5 * axial * log_stretch;
 }
 
-template <Hex8Batch::Kind kKind, bool kRebar>
-void batch_forces(const Hex8Batch& b, const double* const position[3], const double* const velocity[3],
-                  bool with_bulk_viscosity, double* force, const Hex8ElementResults& results) {
-  const auto& B = b.gradient_per_m;
-  V x[8][3];  // relative to node 0
+// The stages of batch_forces below. Each is inlined into every instantiation of
+// it (always_inline), so the kernel compiles to the instructions it did as one
+// function: the same speed, and the same results to the bit.
+
+// The element's node positions relative to its node 0, gathered lane by lane.
+[[gnu::always_inline]] inline void gather_positions(const Hex8Batch& b, const double* const position[3], V x[8][3]) {
   for (int k = 0; k < 3; ++k) {
     V origin;
     for (int l = 0; l < kHexLanes; ++l) origin[l] = position[k][b.node[0][l]];
@@ -111,7 +112,11 @@ void batch_forces(const Hex8Batch& b, const double* const position[3], const dou
       x[a][k] = p - origin;
     }
   }
-  V F[3][3];
+}
+
+// F = sum_a x_a (x) B_a at the centre and its cofactor C; returns J = det F.
+[[gnu::always_inline]] inline V deformation_gradient(const Hex8Batch& b, const V x[8][3], V F[3][3], V C[3][3]) {
+  const auto& B = b.gradient_per_m;
   for (int k = 0; k < 3; ++k)
     for (int l = 0; l < 3; ++l) {
       V sum = x[0][k] * B[0][l];
@@ -119,48 +124,46 @@ void batch_forces(const Hex8Batch& b, const double* const position[3], const dou
       F[k][l] = sum;
     }
   // cof(F) = det(F) F^-T, by columns: [f1 x f2, f2 x f0, f0 x f1].
-  V C[3][3];
   for (int j = 0; j < 3; ++j) {
     const int p = (j + 1) % 3, q = (j + 2) % 3;
     C[0][j] = F[1][p] * F[2][q] - F[2][p] * F[1][q];
     C[1][j] = F[2][p] * F[0][q] - F[0][p] * F[2][q];
     C[2][j] = F[0][p] * F[1][q] - F[1][p] * F[0][q];
   }
-  const V J = F[0][0] * C[0][0] + F[1][0] * C[1][0] + F[2][0] * C[2][0];
+  return F[0][0] * C[0][0] + F[1][0] * C[1][0] + F[2][0] * C[2][0];
+}
 
-  V tau[3][3];
-  V energy_density;
-  if constexpr (kKind == Hex8Batch::Kind::yeoh)
-    energy_density = yeoh_stress(b, F, J, tau);
-  else
-    energy_density = elastic_stress(b, F, J, tau);
-  if constexpr (kRebar) energy_density += add_rebar_stress(b, F, tau);
-
-  V viscous_power = splat(0.0);
-  if (with_bulk_viscosity) {
-    // tr(D) = tr(dv/dX F^-1) = (dv/dX : cof F) / J; sigma_v = b1 rho c L_e tr(D) I.
-    V dvdX_cof = splat(0.0);
-    for (int k = 0; k < 3; ++k) {
-      // Gathered into plain arrays and copied whole: writing a vector's lanes
-      // one by one reads it first, which GCC 12 takes for a use uninitialised.
-      V v[8];
-      for (int a = 0; a < 8; ++a) {
-        double lanes[kHexLanes];
-        for (int l = 0; l < kHexLanes; ++l) lanes[l] = velocity[k][b.node[a][l]];
-        std::memcpy(&v[a], lanes, sizeof lanes);
-      }
-      for (int l = 0; l < 3; ++l) {
-        V dv = v[0] * B[0][l];
-        for (int a = 1; a < 8; ++a) dv += v[a] * B[a][l];
-        dvdX_cof += dv * C[k][l];
-      }
+// Linear bulk viscosity added to tau: tr(D) = tr(dv/dX F^-1) = (dv/dX : cof F) / J;
+// sigma_v = b1 rho c L_e tr(D) I. Returns its power (negative: dissipated).
+[[gnu::always_inline]] inline V add_bulk_viscosity(const Hex8Batch& b, const double* const velocity[3], const V C[3][3], V J, V tau[3][3]) {
+  const auto& B = b.gradient_per_m;
+  V dvdX_cof = splat(0.0);
+  for (int k = 0; k < 3; ++k) {
+    // Gathered into plain arrays and copied whole: writing a vector's lanes
+    // one by one reads it first, which GCC 12 takes for a use uninitialised.
+    V v[8];
+    for (int a = 0; a < 8; ++a) {
+      double lanes[kHexLanes];
+      for (int l = 0; l < kHexLanes; ++l) lanes[l] = velocity[k][b.node[a][l]];
+      std::memcpy(&v[a], lanes, sizeof lanes);
     }
-    const V trace_D = dvdX_cof / J;
-    const V Jq = J * b.bulk_viscosity_Pa_s * trace_D;
-    for (int k = 0; k < 3; ++k) tau[k][k] += Jq;
-    viscous_power = -b.volume_m3 * Jq * trace_D;
+    for (int l = 0; l < 3; ++l) {
+      V dv = v[0] * B[0][l];
+      for (int a = 1; a < 8; ++a) dv += v[a] * B[a][l];
+      dvdX_cof += dv * C[k][l];
+    }
   }
+  const V trace_D = dvdX_cof / J;
+  const V Jq = J * b.bulk_viscosity_Pa_s * trace_D;
+  for (int k = 0; k < 3; ++k) tau[k][k] += Jq;
+  return -b.volume_m3 * Jq * trace_D;
+}
 
+// The nodal forces, written to `force`: the stress's, V0 P B_a, and the
+// hourglass control's. Returns the hourglass energy.
+[[gnu::always_inline]] inline V nodal_forces(const Hex8Batch& b, const V x[8][3], const V F[3][3], const V C[3][3], V J, const V tau[3][3],
+               double* force) {
+  const auto& B = b.gradient_per_m;
   // V0 P = (V0 / J) tau cof(F).
   const V scale = b.volume_m3 / J;
   V M[3][3];
@@ -189,8 +192,29 @@ void batch_forces(const Hex8Batch& b, const double* const position[3], const dou
       for (int m = 0; m < 4; ++m) f += kHex8HourglassPattern[m][i] * q[m][k];
       std::memcpy(force + (i * 3 + k) * kHexLanes, &f, sizeof f);
     }
+  return 0.5 * k_hg * hourglass_sq;
+}
 
-  const V hourglass_energy = 0.5 * k_hg * hourglass_sq;
+template <Hex8Batch::Kind kKind, bool kRebar>
+void batch_forces(const Hex8Batch& b, const double* const position[3], const double* const velocity[3],
+                  bool with_bulk_viscosity, double* force, const Hex8ElementResults& results) {
+  V x[8][3];  // relative to node 0
+  gather_positions(b, position, x);
+  V F[3][3], C[3][3];
+  const V J = deformation_gradient(b, x, F, C);
+
+  V tau[3][3];
+  V energy_density;
+  if constexpr (kKind == Hex8Batch::Kind::yeoh)
+    energy_density = yeoh_stress(b, F, J, tau);
+  else
+    energy_density = elastic_stress(b, F, J, tau);
+  if constexpr (kRebar) energy_density += add_rebar_stress(b, F, tau);
+
+  V viscous_power = splat(0.0);
+  if (with_bulk_viscosity) viscous_power = add_bulk_viscosity(b, velocity, C, J, tau);
+
+  const V hourglass_energy = nodal_forces(b, x, F, C, J, tau, force);
   const V energy = energy_density * b.volume_m3 + hourglass_energy;
   for (int l = 0; l < kHexLanes; ++l) {
     const int e = b.element[l];
