@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "cosim/ramp.hpp"
-#include "snow_sph/axisym_fe.hpp"
+#include "snow_fe/axisym_fe.hpp"
 #include "snow_sph/mdpc.hpp"
 #include "test_support.hpp"
 
@@ -235,7 +235,7 @@ TEST(SnowOedometer, SettlementConvergesToTheClosedForm) {
 
 TEST(SnowOedometer, LagrangianMeshSettlesAsTheClosedForm) {
   // The same column on the Lagrangian axisymmetric mesh of the plate test
-  // (snow_sph/axisym_fe.hpp) with the same mdpc_update: rollers on the side and the
+  // (snow_fe/axisym_fe.hpp) with the same mdpc_update: rollers on the side and the
   // bottom, the plate pressure on the top edge (consistent nodal loads
   // P integral N_a r dr), ramped over the scene's time and held, the scene's
   // quasi-static damping until the column is at rest. A mesh has none of the SPH's
@@ -247,7 +247,7 @@ TEST(SnowOedometer, LagrangianMeshSettlesAsTheClosedForm) {
   const auto loaded = cosim::load_scene(test_support::source_dir() + "/tests/snow_sph/test_snow_oedometer.textproto");
   const Oedometer o = read_scene(*loaded);
   const auto mat = snow_sph::material_from_scene(loaded->message.sph().blocks(0).material());
-  namespace fe = snow_sph::axisym_fe;
+  namespace fe = snow_fe::axisym;
   std::vector<double> r_lines{0.0, 0.02, 0.04}, z_lines;
   const int layers = 50;
   for (int k = 0; k <= layers; ++k) z_lines.push_back(o.height * k / layers);

@@ -1,6 +1,6 @@
-// Tests of the Lagrangian axisymmetric snow mesh (snow_sph/axisym_fe.hpp) against
+// Tests of the Lagrangian axisymmetric snow mesh (snow_fe/axisym_fe.hpp) against
 // closed forms of linear elasticity, and of the finite-element plate test
-// (snow_sph/plate_fe.hpp) against its own conservation laws.
+// (snow_fe/plate_fe.hpp) against its own conservation laws.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,14 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "snow_sph/axisym_fe.hpp"
-#include "snow_sph/plate_fe.hpp"
+#include "snow_fe/axisym_fe.hpp"
+#include "snow_fe/plate_fe.hpp"
 #include "snow_sph/scene.hpp"
 #include "test_support.hpp"
 
 namespace {
 
-namespace fe = snow_sph::axisym_fe;
+namespace fe = snow_fe::axisym;
 
 // A snow that stays elastic: the cone's cohesion and the cap's pressures are far
 // beyond any stress of these tests (Table 3.1's E and nu).
@@ -134,9 +134,9 @@ TEST(PlateFe, EnergyAndMomentumBalance) {
   // in all): 0.5 %.
   const auto scene = cosim::load_scene(test_support::source_dir() + "/configs/scenes/plate_sinkage.textproto",
                                        {"time.end_time_s=0.1"});
-  const auto setup = snow_sph::plate_fe_setup_from_scene(*scene, 0.03);
+  const auto setup = snow_fe::plate_fe_setup_from_scene(*scene, 0.03);
   const std::string out = testing::TempDir() + "plate_fe";
-  const auto summary = snow_sph::run_plate_fe(setup, out, true);
+  const auto summary = snow_fe::run_plate_fe(setup, out, true);
   ASSERT_EQ(summary["status"], "completed");
   std::ifstream csv(out + "/plate.csv");
   std::string line;

@@ -27,7 +27,7 @@
 
 #include "snow_sph/mdpc.hpp"
 
-namespace snow_sph::axisym_fe {
+namespace snow_fe::axisym {
 
 // A structured mesh of (r_lines - 1) x (z_lines - 1) quads. Node (i, j) sits at
 // (r_lines[i], z_lines[j]) in the reference state; its index is j * nodes_r + i.
@@ -52,7 +52,7 @@ struct Mesh {
 // Throws cosim::Error otherwise. Stresses start at zero, eps_vol_pl at
 // params.initial_cap_volumetric_plastic_strain.
 Mesh make_mesh(const std::vector<double>& r_lines_m, const std::vector<double>& z_lines_m,
-               double density_kg_per_m3, const MdpcParameters& params);
+               double density_kg_per_m3, const snow_sph::MdpcParameters& params);
 
 // Gauss point positions (reference) of element e, for initial stress fields.
 Eigen::Vector2d gauss_point_position(const Mesh& mesh, int element, int point);
@@ -67,7 +67,7 @@ struct ElementPassResult {
 // B-bar, Jaumann rotation, mdpc_update) and writes the internal nodal forces
 // (per radian, the force the snow exerts on the node: -integral B^T sigma r dA)
 // into f_r, f_z (resized). With dt = 0 the stresses are left as they are.
-ElementPassResult element_pass(Mesh& mesh, const MdpcParameters& params, double dt,
+ElementPassResult element_pass(Mesh& mesh, const snow_sph::MdpcParameters& params, double dt,
                                std::vector<double>& f_r, std::vector<double>& f_z);
 
 // Accelerations of the nodes under forces f (per radian) and gravity g along
@@ -92,6 +92,6 @@ double kinetic_energy_J_per_rad(const Mesh& mesh);
 
 // Elastic strain energy per radian stored in the stresses (isotropic Hooke:
 // p^2 / 2K + q^2 / 6G per unit current volume), for energy balances.
-double elastic_energy_J_per_rad(const Mesh& mesh, const MdpcParameters& params);
+double elastic_energy_J_per_rad(const Mesh& mesh, const snow_sph::MdpcParameters& params);
 
-}  // namespace snow_sph::axisym_fe
+}  // namespace snow_fe::axisym

@@ -24,11 +24,11 @@
 #include "cosim/scene_io.hpp"
 #include "snow_sph/mdpc.hpp"
 
-namespace snow_sph {
+namespace snow_fe {
 
 struct PlateFeSetup {
   std::string name = "plate_sinkage_fe";
-  MdpcParameters snow;
+  snow_sph::MdpcParameters snow;
   double density_kg_per_m3 = 0.0;
   double slab_radius_m = 0.0, slab_depth_m = 0.0;
   double element_size_m = 0.0;  // target; the plate's edge is always a node line
@@ -57,4 +57,4 @@ PlateFeSetup plate_fe_setup_from_scene(const cosim::LoadedScene& scene, double e
 // "mesh_inverted" and keeps everything written up to that step.
 nlohmann::json run_plate_fe(const PlateFeSetup& setup, const std::string& out_folder, bool quiet);
 
-}  // namespace snow_sph
+}  // namespace snow_fe

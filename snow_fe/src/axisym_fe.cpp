@@ -1,5 +1,5 @@
 // Axisymmetric quads with B-bar and the snow's mdpc_update; see axisym_fe.hpp.
-#include "snow_sph/axisym_fe.hpp"
+#include "snow_fe/axisym_fe.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,8 +7,13 @@
 
 #include "cosim/error.hpp"
 
-namespace snow_sph::axisym_fe {
+namespace snow_fe::axisym {
 namespace {
+
+// The snow's material model is the particles' (snow_sph/mdpc.hpp).
+using snow_sph::MdpcParameters;
+using snow_sph::MdpcStepResult;
+using snow_sph::mdpc_update;
 
 // Node a of a quad: natural coordinates (corner order (i,j), (i+1,j), (i+1,j+1), (i,j+1)).
 constexpr std::array<double, 4> kXi{-1.0, 1.0, 1.0, -1.0};
@@ -229,4 +234,4 @@ double elastic_energy_J_per_rad(const Mesh& m, const MdpcParameters& params) {
   return sum;
 }
 
-}  // namespace snow_sph::axisym_fe
+}  // namespace snow_fe::axisym

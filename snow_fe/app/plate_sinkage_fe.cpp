@@ -1,5 +1,5 @@
 // plate_sinkage_fe: the plate-sinkage scene on a Lagrangian axisymmetric mesh of
-// the same snow (snow_sph/plate_fe.hpp), the independent check of the snow's
+// the same snow (snow_fe/plate_fe.hpp), the independent check of the snow's
 // parameters beside the SPH run.
 //   plate_sinkage_fe SCENE --out DIR [--set field.path=value ...] [--element-size M] [--quiet]
 #include <cstdio>
@@ -10,7 +10,7 @@
 #include "cosim/error.hpp"
 #include "cosim/interrupt.hpp"
 #include "cosim/result_references.hpp"
-#include "snow_sph/plate_fe.hpp"
+#include "snow_fe/plate_fe.hpp"
 #include "snow_sph/scene.hpp"
 
 int main(int argc, char** argv) {
@@ -28,8 +28,8 @@ int main(int argc, char** argv) {
   cosim::install_interrupt_handler();
   try {
     const auto scene = snow_sph::load_sph_scene(scene_file, sets);
-    const auto setup = snow_sph::plate_fe_setup_from_scene(*scene, element_size);
-    const auto summary = snow_sph::run_plate_fe(setup, out_dir, quiet);
+    const auto setup = snow_fe::plate_fe_setup_from_scene(*scene, element_size);
+    const auto summary = snow_fe::run_plate_fe(setup, out_dir, quiet);
     const auto& r = summary["results"];
     std::printf("%s: %s after %.3f s simulated, %.1f s wall\n", setup.name.c_str(),
                 summary["status"].get<std::string>().c_str(), summary["simulated_time_s"].get<double>(),

@@ -1,5 +1,5 @@
 // The plate-sinkage test on an axisymmetric Lagrangian mesh; see plate_fe.hpp.
-#include "snow_sph/plate_fe.hpp"
+#include "snow_fe/plate_fe.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,13 +11,18 @@
 #include "cosim/outputs.hpp"
 #include "cosim/progress.hpp"
 #include "cosim/ramp.hpp"
-#include "snow_sph/axisym_fe.hpp"
+#include "snow_fe/axisym_fe.hpp"
 #include "snow_sph/scene.hpp"
 
-namespace snow_sph {
+namespace snow_fe {
 namespace {
 
-namespace fe = axisym_fe;
+namespace fe = axisym;
+// The snow's material and its layer at rest are the SPH scene's (snow_sph/scene.hpp).
+using snow_sph::ConfinedLayerState;
+using snow_sph::MaterialModel;
+using snow_sph::confined_layer_state;
+using snow_sph::material_from_scene;
 constexpr double kTwoPi = 6.283185307179586;
 
 // n equal intervals from a to b, n = max(1, round((b - a) / h)); appends the end points after `lines`' last.
@@ -272,4 +277,4 @@ nlohmann::json run_plate_fe(const PlateFeSetup& s, const std::string& out, bool 
   return summary;
 }
 
-}  // namespace snow_sph
+}  // namespace snow_fe
