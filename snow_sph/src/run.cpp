@@ -128,7 +128,7 @@ class SphRun final : public cosim::Participant {
   std::optional<std::uint64_t> exchanges_completed() const override {
     return port_ && !stopped_ ? std::optional<std::uint64_t>(exchange_ + 1) : std::nullopt;
   }
-  double coupling_window_s() const override { return port_ ? model_->settings.fixed_dt : 0.0; }
+  double coupling_window_s() const override { return port_ ? model_->settings.coupling_window_s : 0.0; }
   bool request_checkpoint_stop() override {
     if (!port_) return false;
     port_->request_checkpoint_stop();
@@ -259,7 +259,7 @@ double SphRun::initialize(cosim::RunRecord& record) {
     if (!(agreed > 0) || agreed > limit)
       throw cosim::Error("the agreed coupled time step " + cosim::number_text(agreed) +
                          " s is above the terrain's stable limit " + cosim::number_text(limit) + " s");
-    model.settings.fixed_dt = agreed;
+    model.settings.coupling_window_s = agreed;
     wall_at_coupling_s_ = record.wall_s();
     summary["coupled_dt_s"] = agreed;
     summary["surface_contact"] = {{"particle_radius_m", contact.particle_radius_m},

@@ -109,12 +109,13 @@ std::string Solver::limit_cause() const {
 double Solver::stable_dt() const {
   const double limit = stability_limit_dt();
   smallest_limit_dt_ = std::min(smallest_limit_dt_, limit);
-  if (m_.settings.fixed_dt > 0.0) {
-    if (m_.settings.fixed_dt > limit)
-      throw cosim::Error("time.fixed_dt_s = " + cosim::number_text(m_.settings.fixed_dt) +
-                         " s exceeds the stable limit " + cosim::number_text(limit) + " s at t = " +
-                         cosim::number_text(time_) + " s (" + limit_cause() + ")");
-    return m_.settings.fixed_dt;
+  const double imposed = m_.settings.imposed_dt_s();
+  if (imposed > 0.0) {
+    if (imposed > limit)
+      throw cosim::Error((m_.settings.coupling_window_s > 0.0 ? "the coupling window " : "time.fixed_dt_s = ") +
+                         cosim::number_text(imposed) + " s exceeds the stable limit " + cosim::number_text(limit) +
+                         " s at t = " + cosim::number_text(time_) + " s (" + limit_cause() + ")");
+    return imposed;
   }
   return m_.settings.cfl * limit;
 }
@@ -609,7 +610,7 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   surface_held_ = true;
   if (!surface_loads_.drained.empty()) drain(surface_loads_.drained);
   // Where the owner's next surface must reach down to: the particles' reach over the next window.
-  const double next_window = m_.settings.fixed_dt > 0.0 ? m_.settings.fixed_dt : dt;
+  const double next_window = m_.settings.coupling_window_s > 0.0 ? m_.settings.coupling_window_s : dt;
   surface_loads_.particle_reach_z_m = particle_reach_z(p.n_real, p.z.data(), p.vz.data(), p.az.data(), next_window,
                                                        surface_params_.particle_radius_m);
 }
@@ -806,7 +807,7 @@ StepStats Solver::step() {
 }
 
 StepStats Solver::advance() {
-  const double window = m_.settings.fixed_dt;
+  const double window = m_.settings.coupling_window_s;
   if (!coupled_ || !(window > 0.0)) return advance_by(stable_dt());
   // Coupled: one step per window while the terrain's Courant number stays at or
   // below 1 (as the window was agreed); beyond, k equal sub-steps at the CFL

@@ -73,7 +73,7 @@ void Solver::save(cosim::CheckpointWriter& out) const {
           std::vector<double>{time_, dt_prev_, step_dt_, smallest_limit_dt_, held_load_limit_dt_, surface_force_[0],
                               surface_force_[1], surface_force_[2], surface_impulse_[0], surface_impulse_[1],
                               surface_impulse_[2], window_surface_kick_, drained_mass_kg_, window_dt_,
-                              active_share_sum_, m_.settings.fixed_dt});
+                              active_share_sum_, m_.settings.coupling_window_s});
   out.put("sph.counters",
           std::vector<std::uint64_t>{steps_, interactions_, rebuilds_, drained_particles_, substepped_windows_,
                                      most_substeps_, active_samples_, surface_held_ ? 1u : 0u,
@@ -138,7 +138,7 @@ void Solver::restore(const cosim::CheckpointReader& in) {
   time_ = d[0], dt_prev_ = d[1], step_dt_ = d[2], smallest_limit_dt_ = d[3], held_load_limit_dt_ = d[4];
   for (int c = 0; c < 3; ++c) surface_force_[c] = d[5 + c], surface_impulse_[c] = d[8 + c];
   window_surface_kick_ = d[11], drained_mass_kg_ = d[12], window_dt_ = d[13], active_share_sum_ = d[14];
-  m_.settings.fixed_dt = d[15];
+  m_.settings.coupling_window_s = d[15];
   const auto c = in.get<std::uint64_t>("sph.counters", 9);
   steps_ = c[0], interactions_ = c[1], rebuilds_ = c[2], drained_particles_ = c[3], substepped_windows_ = c[4];
   most_substeps_ = static_cast<std::uint32_t>(c[5]), active_samples_ = c[6], surface_held_ = c[7] != 0;

@@ -120,7 +120,7 @@ TEST(Drain, APlatePressedThroughAWaterLayerOntoTheFloorSqueezesItOut) {
       plate.friction_coefficient.push_back(0.0);
     }
   solver.prepare();
-  model.settings.fixed_dt = model.settings.cfl * solver.stability_limit_dt();
+  model.settings.coupling_window_s = model.settings.cfl * solver.stability_limit_dt();
   const double speed = 1.0, parked = 0.001, hold_s = 0.01;
   double t = 0.0;
   std::uint64_t exchange = 0;

@@ -56,7 +56,7 @@ Outcome strike(const std::vector<std::string>& sets, double top_z, double speed,
   solver.couple(contact);
   solver.prepare();
   const double window = courant * solver.stability_limit_dt();
-  model.settings.fixed_dt = window;
+  model.settings.coupling_window_s = window;
   const double z0 = top_z + contact.particle_radius_m + 1e-3;  // 1 mm clear of the top particles
   auto surface_at = [&](double t) {
     const double z = std::max(stop_z, z0 - speed * t);

@@ -75,7 +75,13 @@ struct RigidBody {
 
 struct Settings {
   double cfl = 0.3;
-  double fixed_dt = 0.0;
+  double fixed_dt = 0.0;  // the scene's fixed step (time.fixed_dt_s; 0: the CFL step)
+  // Coupled: the window agreed with the peers, which each step spans (its
+  // sub-steps inside it); 0 on its own.
+  double coupling_window_s = 0.0;
+  // The step the solver is held to: the coupling window when coupled, else
+  // the scene's fixed step (0: none, the CFL step).
+  double imposed_dt_s() const { return coupling_window_s > 0.0 ? coupling_window_s : fixed_dt; }
   double end_time = 0.0;
   unsigned long long max_steps = 0;
   double av_alpha = 1.0, av_beta = 1.0;
