@@ -4,22 +4,22 @@
 // of each exchange and hands back the loads the solver computed, both in the
 // types the tyre's side uses too (cosim/surface_exchange.hpp).
 // What is behind the port (DDS in the coupled executable, a test double in
-// tests) is not the solver's business.
+// tests) is not the solver's business. What every link to the peers offers
+// (the run's end, a stop at a checkpoint) is cosim::coupling::PeerLink's.
 //
 // Timing: exchange n belongs to time t_n. initialise() makes exchange 0 with
 // the particles at t_0; step k (k = 1, 2, ...) makes exchange k with the
 // particles at t_k, after the particle forces and before the kick that uses
 // them, so the contact forces of both sides belong to the same instant.
 #include <cstdint>
-#include <string>
 
+#include "cosim_coupling/coupled_participant.hpp"
 #include "snow_sph/surface_contact.hpp"
 
 namespace snow_sph {
 
-class SurfaceExchange {
+class SurfaceExchange : public cosim::coupling::PeerLink {
  public:
-  virtual ~SurfaceExchange() = default;
   // Once, before initialise(): this solver's stable step in, the common step
   // out. `start_exchange`: 0, or a restart's first exchange (every peer must agree).
   virtual double connect(double proposed_dt_s, std::uint64_t start_exchange) = 0;
@@ -29,12 +29,6 @@ class SurfaceExchange {
   virtual const cosim::SurfaceTopology& topology() const = 0;
   // The loads computed at the exchange they name.
   virtual void send_loads(const cosim::SurfaceLoads& loads) = 0;
-  // End of the run: normal stop (failed = false) or failure with a reason.
-  virtual void finish(bool failed, const std::string& reason) = 0;
-  // A stop signal: asks the run for a stop at a common checkpoint; the exchange
-  // named for it once known (0: none yet; docs/reliability.md).
-  virtual void request_checkpoint_stop() = 0;
-  virtual std::uint64_t checkpoint_stop_exchange() const = 0;
 };
 
 }  // namespace snow_sph
