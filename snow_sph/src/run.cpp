@@ -151,23 +151,50 @@ void SphRun::report_substeps(const StepStats& st) {
                st.substeps, substeps_cause_.c_str());
 }
 
+// One named record per quantity (cosim/checkpoint.hpp).
 void SphRun::save(cosim::CheckpointWriter& out) const {
   solver_->save(out);
-  out.put("run.doubles", std::vector<double>{dt_min_, dt_max_, dt_sum_, probe_sum_, probe_time_, last_dt_, next_csv_,
-                                             next_vtk_, max_penetration_m_, deepest_.time_s, deepest_.particle_x_m,
-                                             deepest_.particle_y_m, deepest_.particle_z_m, deepest_.facet});
-  out.put("run.counters", std::vector<std::uint64_t>{exchange_, windows_, clamped_, stopped_ ? 1u : 0u});
+  out.put_value("run.dt_min_s", dt_min_);
+  out.put_value("run.dt_max_s", dt_max_);
+  out.put_value("run.dt_sum_s", dt_sum_);
+  out.put_value("run.floor_pressure_time_integral_Pa_s", probe_sum_);
+  out.put_value("run.floor_pressure_averaged_s", probe_time_);
+  out.put_value("run.last_dt_s", last_dt_);
+  out.put_value("run.next_csv_row_s", next_csv_);
+  out.put_value("run.next_vtk_frame_s", next_vtk_);
+  out.put_value("run.max_penetration_m", max_penetration_m_);
+  out.put_value("run.deepest_contact_time_s", deepest_.time_s);
+  out.put_value("run.deepest_contact_particle_x_m", deepest_.particle_x_m);
+  out.put_value("run.deepest_contact_particle_y_m", deepest_.particle_y_m);
+  out.put_value("run.deepest_contact_particle_z_m", deepest_.particle_z_m);
+  out.put_value("run.deepest_contact_facet", deepest_.facet);
+  out.put_value<std::uint64_t>("run.last_exchange", exchange_);
+  out.put_value<std::uint64_t>("run.steps_made", windows_);
+  out.put_value<std::uint64_t>("run.wall_clamps", clamped_);
+  out.put_value<std::uint64_t>("run.stopped", stopped_ ? 1u : 0u);
   out.put("run.vtk_frame_times", vtk_ ? vtk_->frame_times() : std::vector<double>{});
 }
 
 void SphRun::restore(const cosim::CheckpointReader& in) {
   solver_->restore(in);
-  const auto d = in.get<double>("run.doubles", 14);
-  dt_min_ = d[0], dt_max_ = d[1], dt_sum_ = d[2], probe_sum_ = d[3], probe_time_ = d[4], last_dt_ = d[5];
-  next_csv_ = d[6], next_vtk_ = d[7], max_penetration_m_ = d[8];
-  deepest_ = {d[9], d[10], d[11], d[12], d[13]};
-  const auto c = in.get<std::uint64_t>("run.counters", 4);
-  exchange_ = c[0], windows_ = c[1], clamped_ = c[2], stopped_ = c[3] != 0;
+  dt_min_ = in.get_value<double>("run.dt_min_s");
+  dt_max_ = in.get_value<double>("run.dt_max_s");
+  dt_sum_ = in.get_value<double>("run.dt_sum_s");
+  probe_sum_ = in.get_value<double>("run.floor_pressure_time_integral_Pa_s");
+  probe_time_ = in.get_value<double>("run.floor_pressure_averaged_s");
+  last_dt_ = in.get_value<double>("run.last_dt_s");
+  next_csv_ = in.get_value<double>("run.next_csv_row_s");
+  next_vtk_ = in.get_value<double>("run.next_vtk_frame_s");
+  max_penetration_m_ = in.get_value<double>("run.max_penetration_m");
+  deepest_.time_s = in.get_value<double>("run.deepest_contact_time_s");
+  deepest_.particle_x_m = in.get_value<double>("run.deepest_contact_particle_x_m");
+  deepest_.particle_y_m = in.get_value<double>("run.deepest_contact_particle_y_m");
+  deepest_.particle_z_m = in.get_value<double>("run.deepest_contact_particle_z_m");
+  deepest_.facet = in.get_value<double>("run.deepest_contact_facet");
+  exchange_ = in.get_value<std::uint64_t>("run.last_exchange");
+  windows_ = in.get_value<std::uint64_t>("run.steps_made");
+  clamped_ = in.get_value<std::uint64_t>("run.wall_clamps");
+  stopped_ = in.get_value<std::uint64_t>("run.stopped") != 0;
   const auto frames = in.get<double>("run.vtk_frame_times");
   if (vtk_) vtk_->resume(frames);
 }
