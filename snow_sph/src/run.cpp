@@ -26,9 +26,10 @@ double SphRun::initialize(cosim::RunRecord& record) {
   Model& model = *model_;
   solver_ = std::make_unique<Solver>(model);
   if (surface_port_) {
-    // Planned end: the tyre's coupled stages (the tyre ends the run).
-    const auto& st = scene_.tyre().stages();
-    model.settings.end_time = st.loading_s() + st.rolling_s();
+    // Planned end: the surface owner's stages (the owner ends the run), as the
+    // tyre and the coupler plan it. In a coupled run it sets only the progress
+    // line and the floor-pressure probe's window, which no coupled scene uses.
+    model.settings.end_time = cosim::planned_end_time_s(scene_);
     model.settings.max_steps = 0;
   }
   describe_setup(record);
