@@ -12,6 +12,16 @@
 namespace snow_sph {
 namespace {
 
+// A length for a plot's title, in mm to a tenth: the cell centre through
+// y = 0 is 1e-17 m away from it by rounding, which the title need not say.
+std::string title_mm(double length_m) {
+  double mm = std::round(length_m * 1e4) / 10.0;
+  if (mm == 0.0) mm = 0.0;  // no "-0.0"
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", mm);
+  return text;
+}
+
 // The rut's map (lowering in mm) and, if the grid spans y = 0, the top surface
 // along x in the row of cells through y = 0, at step 0 and now. Listed under
 // summary "plots" when drawn.
@@ -28,10 +38,11 @@ void plot_rut(cosim::RunRecord& record, const std::string& scene, const RutGrid&
   const double rows = std::floor(-grid.y0_m / grid.cell_m);
   if (!(rows >= 0 && rows < static_cast<double>(grid.ny))) return;
   // The row's cells by their centre's y, within a quarter cell (the CSV's 10 digits).
-  const std::string y = cosim::number_text(grid.centre_y_m(static_cast<std::size_t>(rows)));
+  const double row_y_m = grid.centre_y_m(static_cast<std::size_t>(rows));
+  const std::string y = cosim::number_text(row_y_m);
   const std::string near = "abs($2 - (" + y + ")) < " + cosim::number_text(0.25 * grid.cell_m);
   cosim::PlotOptions profile;
-  profile.title = scene + ": top particle centres along x at y = " + y + " m";
+  profile.title = scene + ": top particle centres along x at y = " + title_mm(row_y_m) + " mm";
   profile.x_label = "x [m]", profile.y_label = "z [mm]";
   profile.extra_commands = "set key bottom right\n";  // the undisturbed top runs along the upper edge
   if (cosim::plot_png(record.path("rut_profile.png"), profile,
