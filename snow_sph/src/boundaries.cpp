@@ -120,7 +120,7 @@ void refresh_ghost_state(Model& model) {
 
 void wall_repulsion(const Model& model, double* ax, double* ay, double* az, double* power) {
   const Particles& p = model.particles;
-  const double reach = 0.5 * model.settings.spacing;
+  const double reach = model.particle_radius_m();
   cosim::parallel_for("walls.repulsion", p.n_real, [&](std::size_t i) {
     // A particle at rest outside the active domain gets no force pass that would
     // reset its acceleration: adding the wall's push to it every step piled up

@@ -52,7 +52,7 @@ void SphRun::join_coupled_run(cosim::RunRecord& record) {
   rut_grid_ = make_rut_grid(p.n_real, p.x.data(), p.y.data(), p.z.data(), model.settings.spacing);
   const auto& c = scene_.coupling();
   SurfaceContactParameters contact;
-  contact.particle_radius_m = 0.5 * model.settings.spacing;
+  contact.particle_radius_m = model.particle_radius_m();
   particle_radius_m_ = contact.particle_radius_m;
   contact.stiffness_N_per_m = model.settings.contact_stiffness * c.contact_stiffness_scale();
   solver_->couple(contact);
@@ -115,14 +115,14 @@ bool SphRun::before_exchange() {
                           (settings.max_steps == 0 || solver_->steps() < settings.max_steps)))
     return false;
   if (!surface_port_ && bodies_at_rest()) return false;
-  step_stats_ = solver_->advance();
+  step_stats_ = solver_->advance_to_exchange();
   ++windows_;
   report_substeps(step_stats_);
   return true;
 }
 
 bool SphRun::after_exchange(bool peers_go_on) {
-  solver_->complete_step();
+  solver_->finish_window();
   if (!peers_go_on) {  // the surface's owner ended the run during this step
     stopped_ = true;
     return false;

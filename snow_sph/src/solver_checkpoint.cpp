@@ -6,24 +6,34 @@
 // Not saved: the per-step work arrays (rates, powers, pair factors), which each
 // step computes before it reads them.
 #include <algorithm>
+#include <type_traits>
+#include <utility>
 
 #include "snow_sph/solver.hpp"
+#include "snow_sph/stages.hpp"
 
 namespace snow_sph {
 namespace {
 
-// Templates, so that saving reads a const state through the same lists as restoring.
+// Named fields, as templates so that saving reads a const state through the
+// same lists as restoring.
+template <class T> using Named = std::vector<std::pair<const char*, T*>>;
+
 template <class E> auto energy_fields(E& e) {
-  return std::vector<decltype(&e.kinetic)>{&e.kinetic, &e.internal, &e.elastic, &e.plastic_dissipation,
-                                           &e.viscous_dissipation, &e.contact_dissipation, &e.contact_elastic,
-                                           &e.external_work, &e.deactivated_kinetic, &e.drained_kinetic,
-                                           &e.initial_total};
+  using D = std::remove_reference_t<decltype((e.kinetic))>;
+  return Named<D>{{"kinetic", &e.kinetic}, {"internal", &e.internal}, {"elastic", &e.elastic},
+                  {"plastic_dissipation", &e.plastic_dissipation}, {"viscous_dissipation", &e.viscous_dissipation},
+                  {"contact_dissipation", &e.contact_dissipation}, {"contact_elastic", &e.contact_elastic},
+                  {"external_work", &e.external_work}, {"deactivated_kinetic", &e.deactivated_kinetic},
+                  {"drained_kinetic", &e.drained_kinetic}, {"initial_total", &e.initial_total}};
 }
 
 // The moving state of a rigid body (its geometry and load come from the scene).
 template <class B> auto body_fields(B& b) {
-  return std::vector<decltype(&b.x)>{&b.x, &b.y, &b.z, &b.vz, &b.az, &b.slow_since_s, &b.contact_force_x_domain,
-                                     &b.contact_force_y_domain, &b.contact_force_z_domain};
+  using D = std::remove_reference_t<decltype((b.x))>;
+  return Named<D>{{"x", &b.x}, {"y", &b.y}, {"z", &b.z}, {"vz", &b.vz}, {"az", &b.az},
+                  {"slow_since_s", &b.slow_since_s}, {"contact_force_x", &b.contact_force_x_domain},
+                  {"contact_force_y", &b.contact_force_y_domain}, {"contact_force_z", &b.contact_force_z_domain}};
 }
 
 }  // namespace
@@ -41,16 +51,49 @@ void Solver::save(cosim::CheckpointWriter& out) const {
   out.put("sph.particles.moving", p.moving);
   out.put("sph.particles.ghost_source", p.ghost_source);
   out.put("sph.particles.ghost_planes", p.ghost_planes);
-  out.put("sph.list.offsets", list_.offsets);
-  out.put("sph.list.index", list_.index);
-  out.put_value("sph.list.radius", list_.radius);
-  out.put("sph.list.ref_x", ref_x_);
-  out.put("sph.list.ref_y", ref_y_);
-  out.put("sph.list.ref_z", ref_z_);
-  out.put("sph.is_water", is_water_);
-  out.put("sph.water_viscosity", water_viscosity_);
-  // The friction sticks with the coupled surface, field by field.
-  const auto& sticks = friction_history_.sticks;
+  out.put("sph.list.offsets", neighbours_.list.offsets);
+  out.put("sph.list.index", neighbours_.list.index);
+  out.put_value("sph.list.radius", neighbours_.list.radius);
+  out.put("sph.list.ref_x", neighbours_.ref_x);
+  out.put("sph.list.ref_y", neighbours_.ref_y);
+  out.put("sph.list.ref_z", neighbours_.ref_z);
+  out.put("sph.is_water", flags_.is_water);
+  out.put("sph.water_viscosity", flags_.water_viscosity);
+  save_sticks(out);
+  // Per rigid body, one array per field over the bodies.
+  const RigidBody none;
+  for (std::size_t k = 0; k < body_fields(none).size(); ++k) {
+    std::vector<double> values;
+    for (const RigidBody& b : m_.bodies) values.push_back(*body_fields(b)[k].second);
+    out.put(std::string("sph.bodies.") + body_fields(none)[k].first, values);
+  }
+  for (const auto& [name, value] : energy_fields(energy_)) out.put_value(std::string("sph.energy.") + name, *value);
+  out.put_value("sph.clock.time_s", clock_.time);
+  out.put_value("sph.clock.dt_prev_s", clock_.dt_prev);
+  out.put_value("sph.clock.step_dt_s", clock_.step_dt);
+  out.put_value("sph.clock.window_dt_s", clock_.window_dt);
+  out.put_value("sph.clock.smallest_limit_dt_s", smallest_limit_dt_);
+  out.put_value("sph.clock.coupling_window_s", m_.settings.coupling_window_s);
+  out.put_value("sph.clock.steps", clock_.steps);
+  out.put_value("sph.clock.interactions", clock_.interactions);
+  out.put_value<std::uint64_t>("sph.clock.substepped_windows", clock_.substepped_windows);
+  out.put_value<std::uint64_t>("sph.clock.most_substeps", clock_.most_substeps);
+  out.put_value<std::uint64_t>("sph.list.rebuilds", neighbours_.rebuilds);
+  out.put_value("sph.surface.held_load_limit_dt_s", surface_.held_load_limit_dt);
+  out.put("sph.surface.force_N", std::vector<double>(surface_.force, surface_.force + 3));
+  out.put("sph.surface.impulse_Ns", std::vector<double>(surface_.impulse, surface_.impulse + 3));
+  out.put_value("sph.surface.window_kick_s", surface_.window_kick);
+  out.put_value<std::uint8_t>("sph.surface.held", surface_.held ? 1 : 0);
+  out.put_value("sph.removed.drained_mass_kg", removed_.drained_mass_kg);
+  out.put_value<std::uint64_t>("sph.removed.drained_particles", removed_.drained_particles);
+  out.put_value<std::uint64_t>("sph.removed.density_out_particles", removed_.density_out_particles);
+  out.put_value("sph.domain.active_share_sum", domain_.active_share_sum);
+  out.put_value("sph.domain.active_samples", domain_.active_samples);
+}
+
+// The friction sticks with the coupled surface, field by field.
+void Solver::save_sticks(cosim::CheckpointWriter& out) const {
+  const auto& sticks = surface_.friction_history.sticks;
   std::vector<std::uint32_t> facet(sticks.size());
   std::vector<float> normal(3 * sticks.size());
   std::vector<double> force(3 * sticks.size());
@@ -58,26 +101,24 @@ void Solver::save(cosim::CheckpointWriter& out) const {
     facet[s] = sticks[s].facet;
     for (int c = 0; c < 3; ++c) normal[3 * s + c] = sticks[s].normal[c], force[3 * s + c] = sticks[s].force[c];
   }
-  out.put("sph.sticks.begin", friction_history_.begin);
+  out.put("sph.sticks.begin", surface_.friction_history.begin);
   out.put("sph.sticks.facet", facet);
   out.put("sph.sticks.normal", normal);
   out.put("sph.sticks.force", force);
-  std::vector<double> bodies;
-  for (const RigidBody& b : m_.bodies)
-    for (const double* v : body_fields(b)) bodies.push_back(*v);
-  out.put("sph.bodies", bodies);
-  std::vector<double> e;
-  for (const double* v : energy_fields(energy_)) e.push_back(*v);
-  out.put("sph.energy", e);
-  out.put("sph.doubles",
-          std::vector<double>{time_, dt_prev_, step_dt_, smallest_limit_dt_, held_load_limit_dt_, surface_force_[0],
-                              surface_force_[1], surface_force_[2], surface_impulse_[0], surface_impulse_[1],
-                              surface_impulse_[2], window_surface_kick_, drained_mass_kg_, window_dt_,
-                              active_share_sum_, m_.settings.coupling_window_s});
-  out.put("sph.counters",
-          std::vector<std::uint64_t>{steps_, interactions_, rebuilds_, drained_particles_, substepped_windows_,
-                                     most_substeps_, active_samples_, surface_held_ ? 1u : 0u,
-                                     density_out_particles_});
+}
+
+void Solver::restore_sticks(const cosim::CheckpointReader& in) {
+  FrictionHistory& history = surface_.friction_history;
+  history.begin = in.get<std::uint32_t>("sph.sticks.begin");
+  const auto facet = in.get<std::uint32_t>("sph.sticks.facet");
+  const auto normal = in.get<float>("sph.sticks.normal", 3 * facet.size());
+  const auto force = in.get<double>("sph.sticks.force", 3 * facet.size());
+  history.sticks.resize(facet.size());
+  for (std::size_t s = 0; s < facet.size(); ++s) {
+    auto& stick = history.sticks[s];
+    stick.facet = facet[s];
+    for (int c = 0; c < 3; ++c) stick.normal[c] = normal[3 * s + c], stick.force[c] = force[3 * s + c];
+  }
 }
 
 void Solver::restore(const cosim::CheckpointReader& in) {
@@ -103,52 +144,55 @@ void Solver::restore(const cosim::CheckpointReader& in) {
   p.moving = in.get<std::uint8_t>("sph.particles.moving", size);
   p.ghost_source = in.get<std::uint32_t>("sph.particles.ghost_source", size);
   p.ghost_planes = in.get<std::uint8_t>("sph.particles.ghost_planes", size);
-  list_.offsets = in.get<std::uint32_t>("sph.list.offsets", n_real + 1);
-  list_.index = in.get<std::uint32_t>("sph.list.index");
-  if (!list_.offsets.empty() && list_.offsets.back() != list_.index.size())
-    throw cosim::Error(in.path() + ": the neighbour list's offsets do not match its index");
-  for (std::uint32_t j : list_.index)
-    if (j >= size) throw cosim::Error(in.path() + ": the neighbour list names a particle beyond those saved");
-  list_.radius = in.get_value<double>("sph.list.radius");
-  ref_x_ = in.get<double>("sph.list.ref_x", n_real);
-  ref_y_ = in.get<double>("sph.list.ref_y", n_real);
-  ref_z_ = in.get<double>("sph.list.ref_z", n_real);
-  is_water_ = in.get<double>("sph.is_water");
-  water_viscosity_ = in.get<double>("sph.water_viscosity");
-  friction_history_.begin = in.get<std::uint32_t>("sph.sticks.begin");
-  const auto facet = in.get<std::uint32_t>("sph.sticks.facet");
-  const auto normal = in.get<float>("sph.sticks.normal", 3 * facet.size());
-  const auto force = in.get<double>("sph.sticks.force", 3 * facet.size());
-  friction_history_.sticks.resize(facet.size());
-  for (std::size_t s = 0; s < facet.size(); ++s) {
-    auto& stick = friction_history_.sticks[s];
-    stick.facet = facet[s];
-    for (int c = 0; c < 3; ++c) stick.normal[c] = normal[3 * s + c], stick.force[c] = force[3 * s + c];
+  restore_neighbours(in, n_real, size);
+  restore_sticks(in);
+  const RigidBody none;
+  for (std::size_t k = 0; k < body_fields(none).size(); ++k) {
+    const char* name = body_fields(none)[k].first;
+    const auto values = in.get<double>(std::string("sph.bodies.") + name, m_.bodies.size());
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b) *body_fields(m_.bodies[b])[k].second = values[b];
   }
-  std::size_t per_body = 0;
-  if (!m_.bodies.empty()) per_body = body_fields(m_.bodies[0]).size();
-  const auto bodies = in.get<double>("sph.bodies", per_body * m_.bodies.size());
-  std::size_t k = 0;
-  for (RigidBody& b : m_.bodies)
-    for (double* v : body_fields(b)) *v = bodies[k++];
-  const auto e = in.get<double>("sph.energy", energy_fields(energy_).size());
-  k = 0;
-  for (double* v : energy_fields(energy_)) *v = e[k++];
-  const auto d = in.get<double>("sph.doubles", 16);
-  time_ = d[0], dt_prev_ = d[1], step_dt_ = d[2], smallest_limit_dt_ = d[3], held_load_limit_dt_ = d[4];
-  for (int c = 0; c < 3; ++c) surface_force_[c] = d[5 + c], surface_impulse_[c] = d[8 + c];
-  window_surface_kick_ = d[11], drained_mass_kg_ = d[12], window_dt_ = d[13], active_share_sum_ = d[14];
-  m_.settings.coupling_window_s = d[15];
-  const auto c = in.get<std::uint64_t>("sph.counters", 9);
-  steps_ = c[0], interactions_ = c[1], rebuilds_ = c[2], drained_particles_ = c[3], substepped_windows_ = c[4];
-  most_substeps_ = static_cast<std::uint32_t>(c[5]), active_samples_ = c[6], surface_held_ = c[7] != 0;
-  density_out_particles_ = c[8];
+  for (const auto& [name, value] : energy_fields(energy_)) *value = in.get_value<double>(std::string("sph.energy.") + name);
+  clock_.time = in.get_value<double>("sph.clock.time_s");
+  clock_.dt_prev = in.get_value<double>("sph.clock.dt_prev_s");
+  clock_.step_dt = in.get_value<double>("sph.clock.step_dt_s");
+  clock_.window_dt = in.get_value<double>("sph.clock.window_dt_s");
+  smallest_limit_dt_ = in.get_value<double>("sph.clock.smallest_limit_dt_s");
+  m_.settings.coupling_window_s = in.get_value<double>("sph.clock.coupling_window_s");
+  clock_.steps = in.get_value<std::uint64_t>("sph.clock.steps");
+  clock_.interactions = in.get_value<std::uint64_t>("sph.clock.interactions");
+  clock_.substepped_windows = in.get_value<std::uint64_t>("sph.clock.substepped_windows");
+  clock_.most_substeps = static_cast<std::uint32_t>(in.get_value<std::uint64_t>("sph.clock.most_substeps"));
+  neighbours_.rebuilds = in.get_value<std::uint64_t>("sph.list.rebuilds");
+  surface_.held_load_limit_dt = in.get_value<double>("sph.surface.held_load_limit_dt_s");
+  const auto force = in.get<double>("sph.surface.force_N", 3), impulse = in.get<double>("sph.surface.impulse_Ns", 3);
+  for (int c = 0; c < 3; ++c) surface_.force[c] = force[c], surface_.impulse[c] = impulse[c];
+  surface_.window_kick = in.get_value<double>("sph.surface.window_kick_s");
+  surface_.held = in.get_value<std::uint8_t>("sph.surface.held") != 0;
+  removed_.drained_mass_kg = in.get_value<double>("sph.removed.drained_mass_kg");
+  removed_.drained_particles = in.get_value<std::uint64_t>("sph.removed.drained_particles");
+  removed_.density_out_particles = in.get_value<std::uint64_t>("sph.removed.density_out_particles");
+  domain_.active_share_sum = in.get_value<double>("sph.domain.active_share_sum");
+  domain_.active_samples = in.get_value<std::uint64_t>("sph.domain.active_samples");
   // Per-particle work arrays sized for the restored particles (each step fills them).
-  for (auto* v : {&lxx_, &lxy_, &lxz_, &lyx_, &lyy_, &lyz_, &lzx_, &lzy_, &lzz_, &stress_power_, &viscous_power_,
-                  &contact_fx_, &contact_fy_, &contact_fz_, &contact_dissipation_, &plastic_increment_, &wall_power_})
-    v->assign(n_real, 0.0);
-  for (auto* v : {&rxx_, &ryy_, &rzz_, &rxy_, &ryz_, &rxz_}) v->assign(size, 0.0);
-  if (domain_) rebuild_lists();
+  size_work_arrays(n_real, size);
+  if (domain_.on) rebuild_active_lists(m_.particles, domain_);
+}
+
+void Solver::restore_neighbours(const cosim::CheckpointReader& in, std::size_t n_real, std::size_t size) {
+  NeighbourList& list = neighbours_.list;
+  list.offsets = in.get<std::uint32_t>("sph.list.offsets", n_real + 1);
+  list.index = in.get<std::uint32_t>("sph.list.index");
+  if (!list.offsets.empty() && list.offsets.back() != list.index.size())
+    throw cosim::Error(in.path() + ": the neighbour list's offsets do not match its index");
+  for (std::uint32_t j : list.index)
+    if (j >= size) throw cosim::Error(in.path() + ": the neighbour list names a particle beyond those saved");
+  list.radius = in.get_value<double>("sph.list.radius");
+  neighbours_.ref_x = in.get<double>("sph.list.ref_x", n_real);
+  neighbours_.ref_y = in.get<double>("sph.list.ref_y", n_real);
+  neighbours_.ref_z = in.get<double>("sph.list.ref_z", n_real);
+  flags_.is_water = in.get<double>("sph.is_water");
+  flags_.water_viscosity = in.get<double>("sph.water_viscosity");
 }
 
 }  // namespace snow_sph

@@ -73,12 +73,12 @@ Outcome strike(const std::vector<std::string>& sets, double top_z, double speed,
   };
   hold();
   for (std::uint64_t n = 1; n * window <= duration; ++n) {
-    solver.advance();
+    solver.advance_to_exchange();
     for (int c = 0; c < 3; ++c) out.owner_impulse[c] += window * held[c];
     surface = surface_at(solver.time());
     solver.contact_surface(&surface, n);
     hold();
-    solver.complete_step();
+    solver.finish_window();
     out.windows = n;
   }
   const snow_sph::Particles& p = model.particles;

@@ -115,6 +115,9 @@ struct Model {
   double container_min[3] = {0, 0, 0}, container_max[3] = {0, 0, 0};
   // Symmetry factor of the whole particle model (for reporting full-model values).
   double symmetry_factor = 1.0;
+  // A particle as a sphere of half a spacing: its contact radius with rigid
+  // bodies, walls and a coupled surface.
+  double particle_radius_m() const { return 0.5 * settings.spacing; }
 };
 
 }  // namespace snow_sph

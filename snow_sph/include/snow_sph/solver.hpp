@@ -1,17 +1,17 @@
 #pragma once
-// Explicit central-difference time stepping of the SPH terrain. One step is a
-// list of stages over explicit state:
-//   advance():        kick (v^{n+1/2}) -> drift (x^{n+1}) -> walls/ghosts/neighbours ->
-//                     rates (velocity gradient, continuity) -> material update
-//                     (sigma^{n+1}) -> forces (a^{n+1}) -> rigid-body contact
-//   [coupled: the run's exchange stage: surface of t_{n+1} in ->
-//    contact_surface() -> loads out]
-//   complete_step():  energy balance -> active domain.
-// step() is advance() + complete_step() for a terrain on its own.
-// Solid SPH after Libersky et al. (1993) and Gray, Monaghan & Swift (2001);
-// weakly compressible water after Monaghan (1994) with delta-SPH density
-// diffusion (Molteni & Colagrossi 2009, hydrostatic part removed as in
-// Fourtakas et al. 2019).
+// Explicit central-difference time stepping of the SPH terrain: the Solver
+// holds the explicit state of the step (step_state.hpp) and runs its stages
+// (stages.hpp) in order. A coupled window reads
+//   advance_to_exchange()  the window's sub-steps, each kick -> drift ->
+//                          boundaries/ghosts/neighbours -> pair rates -> stress
+//                          update -> pair forces -> walls, bodies; the last up to
+//                          the particle forces at the window's end
+//   contact_surface()      the exchange: the owner's surface of that time in,
+//                          its contact into the particles' accelerations, loads out
+//   finish_window()        the last sub-step's end: energy balance, water
+//                          leaving the flow, active domain
+// and step() is advance_to_exchange() + finish_window() for a terrain on its own
+// (docs/coupling.md, "The terrain's step").
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -19,34 +19,27 @@
 
 #include "cosim/checkpoint.hpp"
 #include "snow_sph/model.hpp"
+#include "snow_sph/step_state.hpp"
 #include "snow_sph/surface_contact.hpp"
 
 namespace snow_sph {
 
-// Energies of the simulated particles and bodies [J]; see docs/sph.md.
-struct EnergyBalance {
-  double kinetic = 0.0;            // particles and rigid bodies
-  double internal = 0.0;           // integrated stress power: elastic + plastic (+ water compression)
-  double elastic = 0.0;            // current stored elastic energy (from the state)
-  double plastic_dissipation = 0.0;
-  double viscous_dissipation = 0.0;  // artificial and physical viscosity
-  double contact_dissipation = 0.0;  // friction and contact damping
-  double contact_elastic = 0.0;      // stored in penalty springs
-  double external_work = 0.0;        // gravity, applied loads, prescribed motions,
-                                     // the coupled surface, the resting (inactive) terrain
-  // Kinetic energy of particles that left the active domain (set at rest there).
-  double deactivated_kinetic = 0.0;
-  // Kinetic energy of water particles drained from a film they cannot resolve
-  // (surface_contact.hpp, SurfaceContactParameters::drain_film_m).
-  double drained_kinetic = 0.0;
-  double initial_total = 0.0;
-  // Abaqus-style balance: KE + IE + VD + FD + contact - W, relative to the
-  // largest of KE, IE, W.
-  double total() const {
-    return kinetic + internal + viscous_dissipation + contact_dissipation + contact_elastic +
-           deactivated_kinetic + drained_kinetic - external_work;
-  }
-  double relative_error() const;
+// The coupled surface's side of the terrain: its contact parameters, the
+// loads of the last exchange and the force held on the particles until the next.
+struct SurfaceCoupling {
+  bool coupled = false;
+  SurfaceContactParameters params;
+  SurfaceContactResult loads;
+  FrictionHistory friction_history;  // elastic sticks, keyed by the stable particle id
+  std::vector<double> a_before;      // accelerations before the surface contact (scratch)
+  std::vector<std::uint8_t> drainable;  // per real particle: 1 for water
+  bool held = false;  // Particles::surface_f* hold an exchange's force
+  double held_load_limit_dt = 0.0;
+  const ContactSurface* last_surface = nullptr;
+  double force[3] = {0, 0, 0};    // on the particles, last exchange
+  double impulse[3] = {0, 0, 0};  // committed windows
+  double window_kick = 0.0;       // the surface force's kicks since the last exchange [s]
+  bool place_around_owner = false;
 };
 
 struct StepStats {
@@ -62,18 +55,20 @@ class Solver {
 
   // Couples the particles to an external surface (call before initialise()):
   // its contact is computed by contact_surface() at every exchange, which the
-  // run makes between advance() and complete_step() (and once before initialise()).
+  // run makes between advance_to_exchange() and finish_window() (and once
+  // before initialise()).
   void couple(const SurfaceContactParameters& parameters);
   // The stable step of the penalty contact with a coupled surface (0: not coupled).
   double surface_contact_limit_dt() const;
-  const SurfaceContactResult& surface_loads() const { return surface_loads_; }
-  // Exchange n (n = 0 before initialise(), else after the n-th advance()): the
-  // contact of the surface at t_n with the particles at t_n, into their
-  // accelerations and surface_loads(); null: the surface's owner ended the run.
+  const SurfaceContactResult& surface_loads() const { return surface_.loads; }
+  // Exchange n (n = 0 before initialise(), else after the n-th
+  // advance_to_exchange()): the contact of the surface at t_n with the
+  // particles at t_n, into their accelerations and surface_loads(); null: the
+  // surface's owner ended the run.
   void contact_surface(const ContactSurface* surface, std::uint64_t exchange);
   // Impulse of the coupled surface on the particles [N s], over the exchanges
   // whose window the surface's owner completed (it sent the next surface).
-  const double* surface_impulse_Ns() const { return surface_impulse_; }
+  const double* surface_impulse_Ns() const { return surface_.impulse; }
 
   // Active terrain domain (as Chrono's CRM "active domains"; docs/coupling.md):
   // with a coupled surface and margin_m > 0, only particles within margin_m, in
@@ -88,23 +83,25 @@ class Solver {
   // Call before initialise().
   void set_active_domain(double margin_m, double wake_speed_m_per_s, double wake_limit_m = 0.0);
   // The largest window over which the surface's owner may hold the loads (exchange 0).
-  double held_load_limit_dt() const { return held_load_limit_dt_; }
-  std::size_t active_particles() const { return force_list_.size(); }
-  double mean_active_share() const { return active_samples_ ? active_share_sum_ / active_samples_ : 1.0; }
+  double held_load_limit_dt() const { return surface_.held_load_limit_dt; }
+  std::size_t active_particles() const { return domain_.force_list.size(); }
+  double mean_active_share() const {
+    return domain_.active_samples ? domain_.active_share_sum / domain_.active_samples : 1.0;
+  }
   // Water particles drained so far from films thinner than they resolve, and their mass.
-  std::size_t drained_particles() const { return drained_particles_; }
-  double drained_mass_kg() const { return drained_mass_kg_; }
+  std::size_t drained_particles() const { return removed_.drained_particles; }
+  double drained_mass_kg() const { return removed_.drained_mass_kg; }
   // A terrain placed around the surface's owner (coupling.place_terrain_around_loaded_tyre):
   // exchange 0 removes the particles inside it (placement.hpp); how many, and their mass.
   // Call before the first exchange.
-  void place_around_surface_owner(bool on) { place_around_owner_ = on; }
-  std::size_t displaced_particles() const { return displaced_particles_; }
-  double displaced_mass_kg() const { return displaced_mass_kg_; }
+  void place_around_surface_owner(bool on) { surface_.place_around_owner = on; }
+  std::size_t displaced_particles() const { return removed_.displaced_particles; }
+  double displaced_mass_kg() const { return removed_.displaced_mass_kg; }
   // Sets the clock, before the first step: a coupled terrain starts at the
   // time of the owner's first surface (a tyre joins after its loading).
   void start_clock_at(double time_s);
   // Among them, those removed because their density left the valid range.
-  std::size_t density_out_particles() const { return density_out_particles_; }
+  std::size_t density_out_particles() const { return removed_.density_out_particles; }
 
   // Computes the initial stress state, sound speeds and accelerations, so that
   // stability_limit_dt() is that of the first step (a coupled terrain proposes
@@ -113,35 +110,42 @@ class Solver {
   // Starts the energy balance (and the active domain, from the surface of
   // exchange 0); call once before the first step.
   void initialise();
-  // The stages of one step of size stable_dt() (or the fixed step) up to the
-  // particle forces of the new time, without the coupled surface ...
+
+  // The step, in two parts around the exchange with a coupled surface:
+  // before_exchange -> exchange -> after_exchange is
+  // advance_to_exchange() -> contact_surface() -> finish_window().
+  //
+  // advance_to_exchange(): one window of the stable step (or the fixed step),
+  // up to the particle forces of its end time, without the coupled surface.
   // Coupled, the fixed step is the coupling window, and the terrain sub-steps
   // inside it when its own stable limit falls below it (docs/coupling.md, "The
   // terrain sub-steps"): k equal steps at the CFL factor, the surface's force of
   // the last exchange held on the particles over all of them and kicked with
   // each sub-step's length, so that its impulse over the window is exactly the
-  // window times the force, as the surface's owner books it.
-  StepStats advance();
-  // ... and its end, after the coupled surface's contact: energies, active domain.
-  void complete_step();
-  // advance() + complete_step(): one step of a terrain on its own.
+  // window times the force, as the surface's owner books it. The sub-steps
+  // before the last are whole (finished here); the last stops at the exchange.
+  StepStats advance_to_exchange();
+  // After the exchange (the coupled surface's contact): the end of the
+  // window's last sub-step: energy balance, water leaving the flow, active domain.
+  void finish_window();
+  // advance_to_exchange() + finish_window(): one step of a terrain on its own.
   StepStats step();
 
-  double time() const { return time_; }
-  std::uint64_t steps() const { return steps_; }
+  double time() const { return clock_.time; }
+  std::uint64_t steps() const { return clock_.steps; }
   double stable_dt() const;             // with the CFL factor
   double stability_limit_dt() const;    // Courant number 1: a fixed step above it is refused
   std::string limit_cause() const;      // what sets stability_limit_dt(), for messages
   double smallest_limit_dt() const { return smallest_limit_dt_; }  // over the steps taken
   // Coupled: windows the terrain sub-stepped, and the most sub-steps in one.
-  std::uint64_t substepped_windows() const { return substepped_windows_; }
-  std::uint32_t most_substeps() const { return most_substeps_; }
+  std::uint64_t substepped_windows() const { return clock_.substepped_windows; }
+  std::uint32_t most_substeps() const { return clock_.most_substeps; }
   // Sub-steps allowed in one window before the run stops with the limit's cause.
   static constexpr std::uint32_t kMaxSubsteps = 1000;
   const EnergyBalance& energy() const { return energy_; }
-  const NeighbourList& neighbours() const { return list_; }
-  std::uint64_t interactions() const { return interactions_; }
-  std::size_t rebuilds() const { return rebuilds_; }
+  const NeighbourList& neighbours() const { return neighbours_.list; }
+  std::uint64_t interactions() const { return clock_.interactions; }
+  std::size_t rebuilds() const { return neighbours_.rebuilds; }
   bool finite() const;  // no NaN/Inf in the particle state
 
   // The whole state of the particles, the rigid bodies and the solver after a
@@ -154,80 +158,41 @@ class Solver {
   double pressure_at(double x, double y, double z) const;
 
  private:
-  // One central-difference step of length dt up to the forces of the new time.
+  // One central-difference step of length dt up to the forces of the new time:
+  // the stage list of the SPH step (solver.cpp).
   StepStats advance_by(double dt);
-  // Adds the held surface force to the accelerations after a sub-step's force pass.
-  void hold_surface_force();
-  void rebuild_if_needed(bool force);
-  void compute_rates();
-  // Correct: the corrected velocity gradient (gradient_correction.hpp); a template
-  // argument so that the plain loop carries none of its sums.
-  template <KernelType T, bool Correct> void compute_rates_t();
-  template <KernelType T> void compute_forces_t();
-  void update_materials(double dt);
-  void compute_forces();
-  void compute_contact(double dt);
-  void update_energy(double dt);
-  // Active domain: which particles are computed and moved next step.
-  void update_activity(const ContactSurface* surface);
-  void rebuild_lists();
+  // The end of one step (or sub-step) of length clock_.step_dt.
+  void finish_step();
+  // Exchange 0's placement around the surface's owner and its window check.
+  void first_exchange(const ContactSurface& surface, double dt);
+  // Returns true if the neighbour list was rebuilt.
+  bool rebuild_if_needed(bool force);
+  // The per-particle work arrays, sized for n_real real and n_all particles.
+  void size_work_arrays(std::size_t n_real, std::size_t n_all);
   void drain(const std::vector<std::uint32_t>& drained);
   // Takes the particles (ascending indices) out of the terrain; returns their mass and kinetic energy.
   std::pair<double, double> remove_particles(const std::vector<std::uint32_t>& gone);
-  template <class Body> void for_active(const char* label, Body&& body);
+
+  // Checkpoint parts (solver_checkpoint.cpp).
+  void save_sticks(cosim::CheckpointWriter& out) const;
+  void restore_sticks(const cosim::CheckpointReader& in);
+  void restore_neighbours(const cosim::CheckpointReader& in, std::size_t n_real, std::size_t size);
 
   Model& m_;
-  NeighbourList list_;
-  std::vector<double> ref_x_, ref_y_, ref_z_;
-  // Per-particle work arrays: velocity gradient and artificial stress.
-  std::vector<double> lxx_, lxy_, lxz_, lyx_, lyy_, lyz_, lzx_, lzy_, lzz_;
-  std::vector<float> pair_f_, pair_inv_;  // per listed pair: F = (1/r) dW/dr, 1/(r^2+0.01h^2)
-  std::vector<double> qxx_, qyy_, qzz_, qxy_, qyz_, qxz_;  // sigma / rho^2
-  std::vector<double> rxx_, ryy_, rzz_, rxy_, ryz_, rxz_;
-  // Per particle, ghosts included: 1 for water, else 0; water's viscosity, else 0.
-  std::vector<double> is_water_, water_viscosity_;
-  std::vector<double> stress_power_, viscous_power_, contact_fx_, contact_fy_, contact_fz_;
-  std::vector<double> contact_dissipation_, wall_power_;
-  std::vector<double> plastic_increment_;
-  double time_ = 0.0, dt_prev_ = 0.0, w_dx_ = 1.0;
-  std::uint64_t steps_ = 0, interactions_ = 0;
-  std::size_t rebuilds_ = 0;
-  bool any_artificial_stress_ = false;
-  bool any_water_ = false;
+  NeighbourState neighbours_;
+  MaterialFlags flags_;
+  PairRates rates_;
+  SymmetricField artificial_stress_;  // Gray et al. (2001) R, per particle and ghost
+  SymmetricField stress_over_rho2_;   // sigma / rho^2, per particle and ghost
+  StepPowers powers_;
+  BodyContactWork body_contact_;
+  ActiveDomain domain_;
   EnergyBalance energy_;
-  bool coupled_ = false;
-  double step_dt_ = 0.0;  // the step advance() took (complete_step() and the contact use it)
-  SurfaceContactParameters surface_params_;
-  SurfaceContactResult surface_loads_;
-  FrictionHistory friction_history_;  // elastic sticks, keyed by the stable particle id
-  // Accelerations before the surface contact (scratch of contact_surface()).
-  std::vector<double> a_before_;
-  bool surface_held_ = false;  // Particles::surface_f* hold an exchange's force
+  StepClock clock_;
+  mutable double smallest_limit_dt_ = 1e30;  // stable_dt() keeps the smallest limit it saw
+  SurfaceCoupling surface_;
+  RemovedParticles removed_;
   bool prepared_ = false;
-  mutable double smallest_limit_dt_ = 1e30;
-  double held_load_limit_dt_ = 0.0;
-  const ContactSurface* last_surface_ = nullptr;
-  double surface_force_[3] = {0, 0, 0};    // on the particles, last exchange
-  double surface_impulse_[3] = {0, 0, 0};  // committed windows
-  double window_surface_kick_ = 0.0;       // the surface force's kicks since the last exchange [s]
-  std::vector<std::uint8_t> drainable_;   // per real particle: 1 for water
-  std::size_t drained_particles_ = 0;
-  double drained_mass_kg_ = 0.0;
-  std::size_t density_out_particles_ = 0;
-  bool place_around_owner_ = false;
-  std::size_t displaced_particles_ = 0;
-  double displaced_mass_kg_ = 0.0;
-  double window_dt_ = 0.0;                 // the last window advance() took
-  std::uint64_t substepped_windows_ = 0;
-  std::uint32_t most_substeps_ = 1;
-  // Active domain.
-  double active_margin_m_ = 0.0, wake_speed_ = 0.0, wake_limit_m_ = 0.0;
-  bool domain_ = false;
-  std::vector<std::uint32_t> force_list_, move_list_;
-  std::vector<double> frozen_;          // per particle and ghost: 1 at rest outside the domain
-  std::vector<double> boundary_power_;  // work rate of resting neighbours on an active particle
-  double active_share_sum_ = 0.0;
-  std::uint64_t active_samples_ = 0;
 };
 
 }  // namespace snow_sph
