@@ -28,7 +28,7 @@ double surface_under_plate(double dx, double& lattice_top) {
   const snow_sph::RigidBody& plate = model.bodies.at(0);
   const snow_sph::Particles& p = model.particles;
   // The particles' own top under the plate: the highest centre plus dx / 2, the
-  // radius the plate's contact gives a particle (Solver::compute_contact).
+  // radius the plate's contact gives a particle (body_contact, snow_sph/src/rigid_bodies.cpp).
   lattice_top = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.n_real; ++i)
     if (std::hypot(p.x[i] - plate.x, p.y[i] - plate.y) <= plate.radius)

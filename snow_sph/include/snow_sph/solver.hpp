@@ -11,7 +11,7 @@
 //   finish_window()        the last sub-step's end: energy balance, water
 //                          leaving the flow, active domain
 // and step() is advance_to_exchange() + finish_window() for a terrain on its own
-// (docs/coupling.md, "The terrain's step").
+// (docs/coupling.md, the participant's step; docs/sph.md, "The step as stages").
 #include <cstdint>
 #include <string>
 #include <utility>
