@@ -224,15 +224,7 @@ class CycloneReader final : public Reader<T> {
     dds_delete(reader_);  // also deletes the read condition
   }
 
-  std::size_t take(std::vector<T>& out) override {
-    std::size_t n = 0;
-    T s;
-    while (take_one(s)) {
-      out.push_back(std::move(s));
-      ++n;
-    }
-    return n;
-  }
+  std::size_t take(std::vector<T>& out) override { return take_all(out, [this](T& s) { return take_one(s); }); }
   bool wait_for(T& out, std::chrono::microseconds timeout) override {
     const dds_time_t deadline = dds_time() + DDS_USECS(std::max<long long>(0, timeout.count()));
     while (true) {
@@ -270,21 +262,7 @@ class CycloneReader final : public Reader<T> {
   dds_entity_t waitset_ = 0;
 };
 
-class CycloneParticipant final : public TopicParticipant<CycloneParticipant> {
- public:
-  CycloneParticipant(const TransportOptions& o, const std::string& address)
-      : domain_(std::make_shared<Domain>(o, address)) {}
-  Vendor vendor() const override { return Vendor::cyclone; }
-  int domain_id() const override { return domain_->domain_id(); }
-
-  template <class T>
-  std::unique_ptr<Writer<T>> writer_for(const TopicQos& q) { return std::make_unique<CycloneWriter<T>>(domain_, q); }
-  template <class T>
-  std::unique_ptr<Reader<T>> reader_for(const TopicQos& q) { return std::make_unique<CycloneReader<T>>(domain_, q); }
-
- private:
-  std::shared_ptr<Domain> domain_;
-};
+using CycloneParticipant = DomainParticipant<Vendor::cyclone, Domain, CycloneWriter, CycloneReader>;
 
 }  // namespace
 

@@ -264,15 +264,7 @@ class FastReader final : public Reader<T> {
   }
   ~FastReader() override { domain_->subscriber()->delete_datareader(reader_); }
 
-  std::size_t take(std::vector<T>& out) override {
-    std::size_t n = 0;
-    T s;
-    while (take_one(s)) {
-      out.push_back(std::move(s));
-      ++n;
-    }
-    return n;
-  }
+  std::size_t take(std::vector<T>& out) override { return take_all(out, [this](T& s) { return take_one(s); }); }
   bool wait_for(T& out, std::chrono::microseconds timeout) override {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     while (true) {
@@ -305,21 +297,7 @@ class FastReader final : public Reader<T> {
   typename fast::WireTypes<T>::Wire wire_;
 };
 
-class FastParticipant final : public TopicParticipant<FastParticipant> {
- public:
-  FastParticipant(const TransportOptions& o, const std::string& address)
-      : domain_(std::make_shared<Domain>(o, address)) {}
-  Vendor vendor() const override { return Vendor::fast; }
-  int domain_id() const override { return domain_->domain_id(); }
-
-  template <class T>
-  std::unique_ptr<Writer<T>> writer_for(const TopicQos& q) { return std::make_unique<FastWriter<T>>(domain_, q); }
-  template <class T>
-  std::unique_ptr<Reader<T>> reader_for(const TopicQos& q) { return std::make_unique<FastReader<T>>(domain_, q); }
-
- private:
-  std::shared_ptr<Domain> domain_;
-};
+using FastParticipant = DomainParticipant<Vendor::fast, Domain, FastWriter, FastReader>;
 
 }  // namespace
 

@@ -1,8 +1,11 @@
 #pragma once
-// The factories each backend provides (internal to the library). Only the
-// backends compiled in (cosim_transport/config.hpp) are defined.
+// What the backends share (internal to the library): the participant over a
+// vendor Domain, the take of every reader, and the factories each backend
+// provides. Only the backends compiled in (cosim_transport/config.hpp) are defined.
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cosim_transport/config.hpp"
 #include "cosim_transport/transport.hpp"
@@ -32,6 +35,39 @@ class TopicParticipant : public Participant {
   std::unique_ptr<Reader<WheelState>> make_reader(const TopicQos& q, const WheelState*) override { return reader<WheelState>(q); }
   std::unique_ptr<Reader<ForceSummary>> make_reader(const TopicQos& q, const ForceSummary*) override { return reader<ForceSummary>(q); }
   std::unique_ptr<Reader<RunControl>> make_reader(const TopicQos& q, const RunControl*) override { return reader<RunControl>(q); }
+};
+
+// Reader<T>::take of a backend: every valid sample there is now, one by one
+// from `take_one(sample)` (false when none is left), appended to `out`.
+template <class T, class TakeOne>
+std::size_t take_all(std::vector<T>& out, TakeOne take_one) {
+  std::size_t n = 0;
+  T s;
+  while (take_one(s)) {
+    out.push_back(std::move(s));
+    ++n;
+  }
+  return n;
+}
+
+// A backend's Participant: one vendor Domain (its participant, publisher,
+// subscriber and topics), shared by every writer and reader made on it, which
+// keep it alive. The backends differ only in these types, not in this class.
+template <Vendor kVendor, class Domain, template <class> class WriterOf, template <class> class ReaderOf>
+class DomainParticipant final : public TopicParticipant<DomainParticipant<kVendor, Domain, WriterOf, ReaderOf>> {
+ public:
+  DomainParticipant(const TransportOptions& o, const std::string& address)
+      : domain_(std::make_shared<Domain>(o, address)) {}
+  Vendor vendor() const override { return kVendor; }
+  int domain_id() const override { return domain_->domain_id(); }
+
+  template <class T>
+  std::unique_ptr<Writer<T>> writer_for(const TopicQos& q) { return std::make_unique<WriterOf<T>>(domain_, q); }
+  template <class T>
+  std::unique_ptr<Reader<T>> reader_for(const TopicQos& q) { return std::make_unique<ReaderOf<T>>(domain_, q); }
+
+ private:
+  std::shared_ptr<Domain> domain_;
 };
 
 // `address`: the IPv4 address of options.network_interface, already resolved.
