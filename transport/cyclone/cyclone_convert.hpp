@@ -23,45 +23,17 @@ struct Scratch {
   }
 };
 
-void view(const SurfaceMesh& s, cosim_wire_SurfaceMesh& w, Scratch& scratch);
-void view(const SurfaceKinematics& s, cosim_wire_SurfaceKinematics& w, Scratch& scratch);
-void view(const ContactLoads& s, cosim_wire_ContactLoads& w, Scratch& scratch);
-void view(const WheelState& s, cosim_wire_WheelState& w, Scratch& scratch);
-void view(const ForceSummary& s, cosim_wire_ForceSummary& w, Scratch& scratch);
-void view(const RunControl& s, cosim_wire_RunControl& w, Scratch& scratch);
-
-void from_wire(const cosim_wire_SurfaceMesh& w, SurfaceMesh& s);
-void from_wire(const cosim_wire_SurfaceKinematics& w, SurfaceKinematics& s);
-void from_wire(const cosim_wire_ContactLoads& w, ContactLoads& s);
-void from_wire(const cosim_wire_WheelState& w, WheelState& s);
-void from_wire(const cosim_wire_ForceSummary& w, ForceSummary& s);
-void from_wire(const cosim_wire_RunControl& w, RunControl& s);
-
-// Generated C struct and topic descriptor per neutral struct.
+// Per topic of cosim/wire_fields.hpp: its two conversions, and its generated
+// C struct and topic descriptor.
 template <class T> struct WireTypes;
-template <> struct WireTypes<SurfaceMesh> {
-  using Wire = cosim_wire_SurfaceMesh;
-  static const dds_topic_descriptor_t* descriptor() { return &cosim_wire_SurfaceMesh_desc; }
-};
-template <> struct WireTypes<SurfaceKinematics> {
-  using Wire = cosim_wire_SurfaceKinematics;
-  static const dds_topic_descriptor_t* descriptor() { return &cosim_wire_SurfaceKinematics_desc; }
-};
-template <> struct WireTypes<ContactLoads> {
-  using Wire = cosim_wire_ContactLoads;
-  static const dds_topic_descriptor_t* descriptor() { return &cosim_wire_ContactLoads_desc; }
-};
-template <> struct WireTypes<WheelState> {
-  using Wire = cosim_wire_WheelState;
-  static const dds_topic_descriptor_t* descriptor() { return &cosim_wire_WheelState_desc; }
-};
-template <> struct WireTypes<ForceSummary> {
-  using Wire = cosim_wire_ForceSummary;
-  static const dds_topic_descriptor_t* descriptor() { return &cosim_wire_ForceSummary_desc; }
-};
-template <> struct WireTypes<RunControl> {
-  using Wire = cosim_wire_RunControl;
-  static const dds_topic_descriptor_t* descriptor() { return &cosim_wire_RunControl_desc; }
-};
+#define COSIM_CYCLONE_WIRE_TYPES(T)                                                                  \
+  void view(const T& s, cosim_wire_##T& w, Scratch& scratch);                                        \
+  void from_wire(const cosim_wire_##T& w, T& s);                                                     \
+  template <> struct WireTypes<T> {                                                                  \
+    using Wire = cosim_wire_##T;                                                                     \
+    static const dds_topic_descriptor_t* descriptor() { return &cosim_wire_##T##_desc; }             \
+  };
+COSIM_WIRE_TOPICS(COSIM_CYCLONE_WIRE_TYPES)
+#undef COSIM_CYCLONE_WIRE_TYPES
 
 }  // namespace cosim::transport::cyclone
