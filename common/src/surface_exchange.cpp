@@ -1,6 +1,7 @@
 #include "cosim/surface_exchange.hpp"
 
 #include <cmath>
+#include <initializer_list>
 
 #include "cosim/error.hpp"
 
@@ -12,6 +13,17 @@ void check_length(std::size_t length, std::size_t expected, const std::string& w
   if (length != expected)
     throw Error(what + ": " + field + " has " + std::to_string(length) + " entries for " + std::to_string(expected) +
                 " " + per);
+}
+
+// Fields of `expected` entries each, checked in the order given (the first
+// mismatch is the one reported).
+struct NamedField {
+  const std::vector<double>* values;
+  const char* name;
+};
+void check_lengths(std::initializer_list<NamedField> fields, std::size_t expected, const std::string& what,
+                   const char* per) {
+  for (const NamedField& f : fields) check_length(f.values->size(), expected, what, f.name, per);
 }
 
 void check_range(const std::vector<std::uint32_t>& numbers, std::size_t count, const std::string& what,
@@ -59,12 +71,9 @@ void check_surface_topology(const SurfaceTopology& t, const std::string& what) {
 void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology, const std::string& what,
                          bool friction_required) {
   const std::size_t n = s.nodes.size(), facets = s.facets.size();
-  check_length(s.x_m.size(), n, what, "x_m", "nodes");
-  check_length(s.y_m.size(), n, what, "y_m", "nodes");
-  check_length(s.z_m.size(), n, what, "z_m", "nodes");
-  check_length(s.vx_mps.size(), n, what, "vx_mps", "nodes");
-  check_length(s.vy_mps.size(), n, what, "vy_mps", "nodes");
-  check_length(s.vz_mps.size(), n, what, "vz_mps", "nodes");
+  check_lengths({{&s.x_m, "x_m"}, {&s.y_m, "y_m"}, {&s.z_m, "z_m"}, {&s.vx_mps, "vx_mps"}, {&s.vy_mps, "vy_mps"},
+                 {&s.vz_mps, "vz_mps"}},
+                n, what, "nodes");
   if (friction_required || !s.friction_coefficient.empty()) check_length(s.friction_coefficient.size(), facets, what, "friction_coefficient", "facets");
   check_range(s.nodes, topology.node_count(), what, "surface node");
   check_range(s.facets, topology.facet_count(), what, "surface facet");
@@ -78,18 +87,13 @@ void check_surface_state(const SurfaceState& s, const SurfaceTopology& topology,
 
 void check_surface_loads(const SurfaceLoads& l, const SurfaceTopology& topology, const std::string& what) {
   const std::size_t n = l.nodes.size(), facets = l.facets.size();
-  check_length(l.fx_N.size(), n, what, "fx_N", "nodes");
-  check_length(l.fy_N.size(), n, what, "fy_N", "nodes");
-  check_length(l.fz_N.size(), n, what, "fz_N", "nodes");
-  check_length(l.normal_force_N.size(), facets, what, "normal_force_N", "facets");
-  check_length(l.pressure_x_N.size(), facets, what, "pressure_x_N", "facets");
-  check_length(l.pressure_y_N.size(), facets, what, "pressure_y_N", "facets");
-  check_length(l.pressure_z_N.size(), facets, what, "pressure_z_N", "facets");
-  check_length(l.tangential_x_N.size(), facets, what, "tangential_x_N", "facets");
-  check_length(l.tangential_y_N.size(), facets, what, "tangential_y_N", "facets");
-  check_length(l.tangential_z_N.size(), facets, what, "tangential_z_N", "facets");
-  check_length(l.contact_area_m2.size(), facets, what, "contact_area_m2", "facets");
-  check_length(l.pressure_Pa.size(), facets, what, "pressure_Pa", "facets");
+  check_lengths({{&l.fx_N, "fx_N"}, {&l.fy_N, "fy_N"}, {&l.fz_N, "fz_N"}}, n, what, "nodes");
+  check_lengths({{&l.normal_force_N, "normal_force_N"}, {&l.pressure_x_N, "pressure_x_N"},
+                 {&l.pressure_y_N, "pressure_y_N"}, {&l.pressure_z_N, "pressure_z_N"},
+                 {&l.tangential_x_N, "tangential_x_N"}, {&l.tangential_y_N, "tangential_y_N"},
+                 {&l.tangential_z_N, "tangential_z_N"}, {&l.contact_area_m2, "contact_area_m2"},
+                 {&l.pressure_Pa, "pressure_Pa"}},
+                facets, what, "facets");
   check_range(l.nodes, topology.node_count(), what, "surface node");
   check_range(l.facets, topology.facet_count(), what, "surface facet");
   if (!std::isfinite(l.time_s)) throw Error(what + ": time_s is not a finite number");
