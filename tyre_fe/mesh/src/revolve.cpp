@@ -90,15 +90,17 @@ double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, cons
   return (p - (a + t * e)).norm();
 }
 
-}  // namespace
+// --- 2D topology: quad-edge neighbours (-1 on the boundary), inner-liner
+// edges and rim nodes of the cross-section.
+struct SectionTopology {
+  std::vector<std::array<int, 4>> neighbour;
+  std::vector<char> liner_edge;
+  std::vector<char> rim_2d;
+};
 
-Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
+SectionTopology section_topology(const CrossSection& s) {
   const int nq = static_cast<int>(s.quads.size());
   const int nn = static_cast<int>(s.nodes.size());
-  if (nq == 0 || static_cast<int>(s.quad_region.size()) != nq)
-    throw cosim::Error("revolve: cross-section without quads or regions");
-
-  // --- 2D topology: quad-edge neighbours (-1 on the boundary).
   std::map<std::pair<int, int>, std::vector<std::array<int, 2>>> edge_uses;
   for (int q = 0; q < nq; ++q)
     for (int k = 0; k < 4; ++k) {
@@ -115,23 +117,44 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
   for (const auto& e : s.inner_liner_edges) liner_edge[4 * e[0] + e[1]] = 1;
   std::vector<char> rim_2d(nn, 0);
   for (int n : s.rim_nodes) rim_2d[n] = 1;
+  return {std::move(neighbour), std::move(liner_edge), std::move(rim_2d)};
+}
 
-  // --- depth below the outer tread surface (the boundary edges of tread quads)
-  std::vector<std::array<Eigen::Vector2d, 2>> tread_surface;
+// --- depth below the outer tread surface (the boundary edges of tread quads)
+using Segments = std::vector<std::array<Eigen::Vector2d, 2>>;
+
+Segments tread_surface_edges(const CrossSection& s, const std::vector<std::array<int, 4>>& neighbour) {
+  const int nq = static_cast<int>(s.quads.size());
+  Segments tread_surface;
   for (int q = 0; q < nq; ++q)
     if (s.quad_region[q] == Region::tread)
       for (int k = 0; k < 4; ++k)
         if (neighbour[q][k] < 0) tread_surface.push_back({s.nodes[s.quads[q][k]], s.nodes[s.quads[q][(k + 1) % 4]]});
-  const auto depth_of = [&](const Eigen::Vector2d& p) {
-    double d = std::numeric_limits<double>::infinity();
-    for (const auto& e : tread_surface) d = std::min(d, segment_distance(p, e[0], e[1]));
-    return d;
-  };
+  return tread_surface;
+}
+
+double depth_below(const Segments& tread_surface, const Eigen::Vector2d& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& e : tread_surface) d = std::min(d, segment_distance(p, e[0], e[1]));
+  return d;
+}
+
+std::vector<Eigen::Vector2d> quad_centres(const CrossSection& s) {
+  const int nq = static_cast<int>(s.quads.size());
   std::vector<Eigen::Vector2d> centre(nq);
   for (int q = 0; q < nq; ++q)
     centre[q] = 0.25 * (s.nodes[s.quads[q][0]] + s.nodes[s.quads[q][1]] + s.nodes[s.quads[q][2]] + s.nodes[s.quads[q][3]]);
+  return centre;
+}
 
-  // --- which tread quads the grooves and sipes cut (by their centre)
+// --- which tread quads the grooves and sipes cut (by their centre)
+struct TreadCuts {
+  std::vector<char> circumferential, lateral, slit;
+};
+
+TreadCuts mark_tread_cuts(const CrossSection& s, const TreadPattern& pattern, const Segments& tread_surface,
+                          const std::vector<Eigen::Vector2d>& centre) {
+  const int nq = static_cast<int>(s.quads.size());
   const TreadVariant v = pattern.variant;
   const bool blocks = v == TreadVariant::block || v == TreadVariant::block_sipes;
   const bool grooves = v != TreadVariant::smooth;
@@ -140,7 +163,7 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
   std::vector<char> circumferential(nq, 0), lateral(nq, 0), slit(nq, 0);
   for (int q = 0; q < nq; ++q) {
     if (!grooves || s.quad_region[q] != Region::tread) continue;
-    const double depth = depth_of(centre[q]);
+    const double depth = depth_below(tread_surface, centre[q]);
     const double y = centre[q].y();
     for (double yc : pattern.circumferential_groove_y_m)
       if (std::abs(y - yc) < 0.5 * pattern.circumferential_groove_width_m && depth < pattern.groove_depth_m)
@@ -150,26 +173,42 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
     lateral[q] = blocks && std::abs(y) <= twh && depth < pattern.groove_depth_m;
     slit[q] = v == TreadVariant::block_sipes && std::abs(y) <= twh && depth < pattern.sipe_depth_m;
   }
+  return {std::move(circumferential), std::move(lateral), std::move(slit)};
+}
 
-  double outer_radius = 0.0;
-  if (s.tread_centre_node >= 0) outer_radius = s.nodes[s.tread_centre_node].x();
-  else for (const auto& p : s.nodes) outer_radius = std::max(outer_radius, p.x());
-  const AngularGrid grid = make_grid(pattern, outer_radius);
-  const int nd = static_cast<int>(grid.lateral.size());
-  const auto exists = [&](int q, int j) {
+// Whether the hex of quad q in division j (taken modulo the divisions) is
+// meshed: a circumferential groove removes it everywhere, a lateral groove in
+// its divisions.
+struct HexPresence {
+  const TreadCuts& cuts;
+  const AngularGrid& grid;
+  int nd;
+  bool operator()(int q, int j) const {
     j = (j + nd) % nd;
-    return !circumferential[q] && !(grid.lateral[j] && lateral[q]);
-  };
+    return !cuts.circumferential[q] && !(grid.lateral[j] && cuts.lateral[q]);
+  }
+};
 
-  // --- sipes: split the nodes of the slit faces, except on the slit's edges
-  // inside the body (bottom, closed ends), so that the two faces can separate.
-  std::vector<int> sipe_of_line(nd, -1);
+// --- sipes: split the nodes of the slit faces, except on the slit's edges
+// inside the body (bottom, closed ends), so that the two faces can separate.
+struct SipeSplit {
+  std::vector<int> sipe_of_line;
   std::vector<std::vector<int>> copy_id;    // per sipe line: 2D node -> copy index or -1
   std::vector<std::vector<char>> slit_face; // per sipe line: quad -> slit
   int copies = 0;
-  Mesh3D m;
+};
+
+SipeSplit split_sipe_nodes(const CrossSection& s, const AngularGrid& grid, const HexPresence& exists,
+                           const std::vector<char>& slit, const Segments& tread_surface,
+                           const std::vector<Eigen::Vector2d>& centre, Mesh3D& m) {
+  const int nq = static_cast<int>(s.quads.size());
+  const int nn = static_cast<int>(s.nodes.size());
+  const int nd = static_cast<int>(grid.lateral.size());
+  const double twh = s.tread_half_width_m;
+  SipeSplit sp;
+  sp.sipe_of_line.assign(nd, -1);
   for (int js : grid.sipe_lines) {
-    sipe_of_line[js] = static_cast<int>(copy_id.size());
+    sp.sipe_of_line[js] = static_cast<int>(sp.copy_id.size());
     std::vector<char> face(nq, 0), blocked(nn, 0), touched(nn, 0);
     for (int q = 0; q < nq; ++q) {
       if (!exists(q, js - 1) || !exists(q, js)) continue;
@@ -178,40 +217,57 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
     }
     std::vector<int> ids(nn, -1);
     for (int n = 0; n < nn; ++n)
-      if (touched[n] && !blocked[n]) ids[n] = copies++;
+      if (touched[n] && !blocked[n]) ids[n] = sp.copies++;
     // Slit depth as meshed, measured over the central half of the tread where
     // the layers are uniform (towards the tread edge the rounding by element
     // centres may reach one layer deeper).
     for (int q = 0; q < nq; ++q)
       if (face[q] && std::abs(centre[q].y()) <= 0.5 * twh)
-        for (int n : s.quads[q]) m.sipe_depth_m = std::max(m.sipe_depth_m, depth_of(s.nodes[n]));
-    copy_id.push_back(std::move(ids));
-    slit_face.push_back(std::move(face));
+        for (int n : s.quads[q]) m.sipe_depth_m = std::max(m.sipe_depth_m, depth_below(tread_surface, s.nodes[n]));
+    sp.copy_id.push_back(std::move(ids));
+    sp.slit_face.push_back(std::move(face));
   }
-  if (v == TreadVariant::block_sipes) m.sipe_width_m = pattern.sipe_width_m;
+  return sp;
+}
 
-  // --- hexes on grid node ids (j * nn + n; copies after nd * nn)
-  const auto grid_id = [&](int n, int j) { return ((j + nd) % nd) * nn + n; };
-  std::vector<int> hex_quad, hex_div;
+// --- hexes on grid node ids (j * nn + n; copies after nd * nn)
+struct GridHexes {
   std::vector<std::array<int, 8>> hexes;
+  std::vector<int> hex_quad, hex_div;
+};
+
+GridHexes grid_hexes(const CrossSection& s, int nd, const HexPresence& exists, const SipeSplit& sp) {
+  const int nq = static_cast<int>(s.quads.size());
+  const int nn = static_cast<int>(s.nodes.size());
+  const auto grid_id = [&](int n, int j) { return ((j + nd) % nd) * nn + n; };
+  GridHexes gh;
   for (int j = 0; j < nd; ++j)
     for (int q = 0; q < nq; ++q) {
       if (!exists(q, j)) continue;
       const auto& c = s.quads[q];
       const int order[4] = {c[0], c[3], c[2], c[1]};
       std::array<int, 8> h;
-      const int si = sipe_of_line[j];
+      const int si = sp.sipe_of_line[j];
       for (int a = 0; a < 4; ++a) {
         const int n = order[a];
-        h[a] = si >= 0 && copy_id[si][n] >= 0 ? nd * nn + copy_id[si][n] : grid_id(n, j);
+        h[a] = si >= 0 && sp.copy_id[si][n] >= 0 ? nd * nn + sp.copy_id[si][n] : grid_id(n, j);
         h[a + 4] = grid_id(n, j + 1);
       }
-      hexes.push_back(h);
-      hex_quad.push_back(q);
-      hex_div.push_back(j);
+      gh.hexes.push_back(h);
+      gh.hex_quad.push_back(q);
+      gh.hex_div.push_back(j);
     }
+  return gh;
+}
 
-  // --- compact numbering of the used nodes
+// --- compact numbering of the used nodes; the mesh's nodes and hexes
+void add_nodes_and_hexes(const CrossSection& s, const AngularGrid& grid, const SipeSplit& sp,
+                         const GridHexes& gh, const std::vector<char>& rim_2d, Mesh3D& m) {
+  const int nn = static_cast<int>(s.nodes.size());
+  const int nd = static_cast<int>(grid.lateral.size());
+  const int copies = sp.copies;
+  const auto& hexes = gh.hexes;
+  const auto& copy_id = sp.copy_id;
   std::vector<int> new_id(static_cast<size_t>(nd) * nn + copies, -1);
   for (const auto& h : hexes)
     for (int g : h) new_id[g] = 0;
@@ -239,14 +295,19 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
     std::array<int, 8> h;
     for (int a = 0; a < 8; ++a) h[a] = new_id[hexes[e][a]];
     m.hexes.push_back(h);
-    m.hex_region.push_back(s.quad_region[hex_quad[e]]);
-    m.hex_source_quad.push_back(hex_quad[e]);
-    m.hex_angle_rad.push_back(0.5 * (grid.theta[hex_div[e]] + grid.theta[hex_div[e] + 1]));
+    m.hex_region.push_back(s.quad_region[gh.hex_quad[e]]);
+    m.hex_source_quad.push_back(gh.hex_quad[e]);
+    m.hex_angle_rad.push_back(0.5 * (grid.theta[gh.hex_div[e]] + grid.theta[gh.hex_div[e] + 1]));
   }
+}
 
-  // --- boundary facets: a side face is exposed where the 2D edge is on the
-  // boundary or the neighbouring quad's hex was removed; an angular face where
-  // the previous/next hex was removed or a slit separates them.
+// --- boundary facets: a side face is exposed where the 2D edge is on the
+// boundary or the neighbouring quad's hex was removed; an angular face where
+// the previous/next hex was removed or a slit separates them.
+void add_boundary_facets(const CrossSection& s, const SectionTopology& topo, const GridHexes& gh,
+                         const SipeSplit& sp, const HexPresence& exists, Mesh3D& m) {
+  const int nd = exists.nd;
+  const double twh = s.tread_half_width_m;
   Eigen::Vector2d lo = s.nodes[0], hi = s.nodes[0];
   for (const auto& p : s.nodes) {
     lo = lo.cwiseMin(p);
@@ -254,7 +315,7 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
   }
   const Eigen::Vector2d cavity = 0.5 * (lo + hi);
   for (size_t e = 0; e < m.hexes.size(); ++e) {
-    const int q = hex_quad[e], j = hex_div[e];
+    const int q = gh.hex_quad[e], j = gh.hex_div[e];
     for (int f = 0; f < 6; ++f) {
       Mesh3D::Facet facet;
       for (int a = 0; a < 4; ++a) facet.nodes[a] = m.hexes[e][kFaces[f][a]];
@@ -265,18 +326,18 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
       const Eigen::Vector3d normal = cosim::unit_normal(cosim::quad_area_vector(p0, p1, p2, p3));
       const double radial = normal.dot(Eigen::Vector3d(mid.x(), 0.0, mid.z()).normalized());
       bool all_rim = true;
-      for (int n : facet.nodes) all_rim = all_rim && rim_2d[m.node_source[n]];
+      for (int n : facet.nodes) all_rim = all_rim && topo.rim_2d[m.node_source[n]];
       if (f < 2) {
         const int line = f == 0 ? j : (j + 1) % nd;
-        const int si = sipe_of_line[line];
-        const bool cut = si >= 0 && slit_face[si][q];
+        const int si = sp.sipe_of_line[line];
+        const bool cut = si >= 0 && sp.slit_face[si][q];
         if (exists(q, f == 0 ? j - 1 : j + 1) && !cut) continue;
         facet.tag = cut ? SurfaceTag::sipe_wall : SurfaceTag::groove_wall;
       } else {
         const int k = kSideEdge[f - 2];
-        const int other = neighbour[q][k];
+        const int other = topo.neighbour[q][k];
         if (other >= 0 && exists(other, j)) continue;
-        if (liner_edge[4 * q + k]) facet.tag = SurfaceTag::inner_liner;
+        if (topo.liner_edge[4 * q + k]) facet.tag = SurfaceTag::inner_liner;
         else if (all_rim) facet.tag = SurfaceTag::rim_contact;
         else if (other >= 0) facet.tag = radial > 0.7 ? SurfaceTag::groove_bottom : SurfaceTag::groove_wall;
         else if (s.quad_region[q] == Region::tread)
@@ -290,6 +351,34 @@ Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
       m.facets.push_back(facet);
     }
   }
+}
+
+}  // namespace
+
+// The stages: 2D topology and tread depth, the quads the pattern cuts, the
+// angular grid, sipe node copies, hexes, node numbering, tagged boundary facets.
+Mesh3D revolve(const CrossSection& s, const TreadPattern& pattern) {
+  const int nq = static_cast<int>(s.quads.size());
+  if (nq == 0 || static_cast<int>(s.quad_region.size()) != nq)
+    throw cosim::Error("revolve: cross-section without quads or regions");
+  const SectionTopology topo = section_topology(s);
+  const Segments tread_surface = tread_surface_edges(s, topo.neighbour);
+  const std::vector<Eigen::Vector2d> centre = quad_centres(s);
+  const TreadCuts cuts = mark_tread_cuts(s, pattern, tread_surface, centre);
+
+  double outer_radius = 0.0;
+  if (s.tread_centre_node >= 0) outer_radius = s.nodes[s.tread_centre_node].x();
+  else for (const auto& p : s.nodes) outer_radius = std::max(outer_radius, p.x());
+  const AngularGrid grid = make_grid(pattern, outer_radius);
+  const int nd = static_cast<int>(grid.lateral.size());
+  const HexPresence exists{cuts, grid, nd};
+
+  Mesh3D m;
+  const SipeSplit sp = split_sipe_nodes(s, grid, exists, cuts.slit, tread_surface, centre, m);
+  if (pattern.variant == TreadVariant::block_sipes) m.sipe_width_m = pattern.sipe_width_m;
+  const GridHexes gh = grid_hexes(s, nd, exists, sp);
+  add_nodes_and_hexes(s, grid, sp, gh, topo.rim_2d, m);
+  add_boundary_facets(s, topo, gh, sp, exists, m);
   return m;
 }
 
