@@ -63,6 +63,133 @@ double signed_area(const CrossSection& s, int q) {
   return 0.5 * a;
 }
 
+// --- station breaks: the hard ones at the tread edges, groove edges, centre and
+// bead seats; soft ones at the region boundaries along the contour.
+struct StationBreaks {
+  std::vector<double> kept;
+  double u_belt1, u_belt2;  // stations where the belt layers reach their half widths
+};
+
+StationBreaks station_breaks(const detail::ProfileDesign& design, const detail::HalfProfile& profile,
+                             const TreadPattern& pattern, double h) {
+  const int nb = profile.boundary_count();
+  const int outer = nb - 1;
+  const double len = profile.length();
+  std::vector<Break> breaks{{-len, true}, {0.0, true}, {len, true}};
+  const auto both_sides = [&](double u, bool hard) {
+    breaks.push_back({u, hard});
+    breaks.push_back({-u, hard});
+  };
+  const auto outer_y_break = [&](double y) {
+    const double u = profile.station_at_y(outer, std::abs(y));
+    if (u < 0) throw cosim::Error("tread pattern: y = " + cosim::number_text(y) + " m is off the tread");
+    breaks.push_back({y < 0 ? -u : u, true});
+  };
+  outer_y_break(design.tread_half_width);
+  outer_y_break(-design.tread_half_width);
+  for (double yc : pattern.circumferential_groove_y_m) {
+    const double hw = 0.5 * pattern.circumferential_groove_width_m;
+    if (!(hw > 0) || std::abs(yc) + hw > design.tread_half_width - 1e-6)
+      throw cosim::Error("tread pattern: circumferential groove at y = " + cosim::number_text(yc) +
+                         " m (width " + cosim::number_text(2 * hw) + " m) is not inside the tread width");
+    outer_y_break(yc - hw);
+    outer_y_break(yc + hw);
+  }
+  // Soft breaks: region boundaries along the contour.
+  both_sides(len - design.bead_height, false);
+  both_sides(len - design.flange_height, false);
+  both_sides(len - design.rim_strip_height, false);
+  both_sides(len - design.bead_height - design.apex_height, false);
+  // Belt edges: where the belt layers reach their half widths (the carcass keeps
+  // widening further down, so the belts are the stations inside these).
+  const double u_belt1 = profile.station_at_y(2, design.belt1_half_width);
+  const double u_belt2 = profile.station_at_y(3, design.belt2_half_width);
+  both_sides(u_belt1, false);
+  both_sides(u_belt2, false);
+  for (double u = 0.0; u < len; u += 1e-4)
+    if (!profile.in_tread_zone(u)) {
+      both_sides(u, false);
+      break;
+    }
+  return {place_breaks(breaks, 0.4 * h), u_belt1, u_belt2};
+}
+
+// --- stations: equal steps of the meridional metric between breaks
+std::vector<double> place_stations(const detail::HalfProfile& profile, const std::vector<double>& kept, double h) {
+  std::vector<double> stations{kept.front()};
+  for (size_t b = 0; b + 1 < kept.size(); ++b) {
+    const double m0 = profile.metric(kept[b]), m1 = profile.metric(kept[b + 1]);
+    const int n = std::max(1, static_cast<int>(std::ceil((m1 - m0) / h - 0.1)));
+    for (int j = 1; j < n; ++j) stations.push_back(profile.station_at_metric(m0 + (m1 - m0) * j / n));
+    stations.push_back(kept[b + 1]);
+  }
+  return stations;
+}
+
+// The region of layer k at contour station uc.
+Region layer_region(int k, double uc, double from_bead, bool tread_zone, const detail::ProfileDesign& design,
+                    const StationBreaks& breaks) {
+  Region r;
+  if (k == 0) {
+    r = Region::inner_liner;
+  } else if (k == 1) {
+    r = Region::ply;
+  } else if (k == 2 || k == 3) {
+    if (std::abs(uc) < (k == 2 ? breaks.u_belt1 : breaks.u_belt2)) r = k == 2 ? Region::belt_1 : Region::belt_2;
+    else if (from_bead < design.bead_height) r = Region::bead;
+    else if (from_bead < design.bead_height + design.apex_height) r = Region::filler;
+    else r = tread_zone ? Region::tread : Region::sidewall;
+  } else {
+    if (tread_zone) r = Region::tread;
+    else if (from_bead < design.rim_strip_height) r = Region::rim_strip;
+    else r = Region::sidewall;
+  }
+  return r;
+}
+
+// The quads between stations i, i+1 and boundaries k, k+1, with their region,
+// rebar layer direction and thickness.
+void add_quads(const detail::ProfileDesign& design, const detail::HalfProfile& profile,
+               const std::vector<double>& stations, const StationBreaks& breaks, CrossSection& s) {
+  const int nb = profile.boundary_count();
+  const int ns = static_cast<int>(stations.size());
+  const auto node = [nb](int i, int k) { return i * nb + k; };
+  for (int i = 0; i + 1 < ns; ++i) {
+    const double uc = 0.5 * (stations[i] + stations[i + 1]);
+    const double from_bead = profile.from_bead(uc);
+    const bool tread_zone = profile.in_tread_zone(uc);
+    for (int k = 0; k + 1 < nb; ++k) {
+      const Region r = layer_region(k, uc, from_bead, tread_zone, design, breaks);
+      const std::array<int, 4> q{node(i, k), node(i, k + 1), node(i + 1, k + 1), node(i + 1, k)};
+      s.quads.push_back(q);
+      s.quad_region.push_back(r);
+      // Layer direction: mean of the two edges along the contour (from the y < 0
+      // bead towards the y > 0 one); thickness = area / mean length along it.
+      const Eigen::Vector2d along = (s.nodes[q[3]] - s.nodes[q[0]]) + (s.nodes[q[2]] - s.nodes[q[1]]);
+      const bool rebar = r == Region::ply || r == Region::belt_1 || r == Region::belt_2;
+      s.quad_layer_tangent.push_back(rebar ? along.normalized() : Eigen::Vector2d::Zero());
+      const int qi = static_cast<int>(s.quads.size()) - 1;
+      s.quad_layer_thickness_m.push_back(signed_area(s, qi) / (0.5 * along.norm()));
+      if (k == 0) s.inner_liner_edges.push_back({qi, 3});
+    }
+  }
+}
+
+// Quality gate: every quad strictly convex and counter-clockwise.
+void check_quads_convex(const CrossSection& s) {
+  for (size_t q = 0; q < s.quads.size(); ++q) {
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector2d a = s.nodes[s.quads[q][k]], b = s.nodes[s.quads[q][(k + 1) % 4]],
+                            c = s.nodes[s.quads[q][(k + 2) % 4]];
+      const Eigen::Vector2d e1 = b - a, e2 = c - b;
+      if (e1.x() * e2.y() - e1.y() * e2.x() <= 0.0)
+        throw cosim::Error("tyre cross-section generator: distorted element at r = " +
+                           cosim::number_text(a.x()) + " m, y = " + cosim::number_text(a.y()) +
+                           " m; this size/pattern is outside what the generator can mesh");
+    }
+  }
+}
+
 }  // namespace
 
 // Accepts "235/75R15", "P235/75R15", "LT235/75R15", "235/75 R 15", "235/75ZR15"
@@ -111,95 +238,15 @@ CrossSection make_cross_section(const TyreSize& size, const TreadPattern& patter
   const int nb = profile.boundary_count();
   const int outer = nb - 1;
   const double h = mesh.target_element_size_m;
-  const double len = profile.length();
-
-  // --- station breaks
-  std::vector<Break> breaks{{-len, true}, {0.0, true}, {len, true}};
-  const auto both_sides = [&](double u, bool hard) {
-    breaks.push_back({u, hard});
-    breaks.push_back({-u, hard});
-  };
-  const auto outer_y_break = [&](double y) {
-    const double u = profile.station_at_y(outer, std::abs(y));
-    if (u < 0) throw cosim::Error("tread pattern: y = " + cosim::number_text(y) + " m is off the tread");
-    breaks.push_back({y < 0 ? -u : u, true});
-  };
-  outer_y_break(design.tread_half_width);
-  outer_y_break(-design.tread_half_width);
-  for (double yc : pattern.circumferential_groove_y_m) {
-    const double hw = 0.5 * pattern.circumferential_groove_width_m;
-    if (!(hw > 0) || std::abs(yc) + hw > design.tread_half_width - 1e-6)
-      throw cosim::Error("tread pattern: circumferential groove at y = " + cosim::number_text(yc) +
-                         " m (width " + cosim::number_text(2 * hw) + " m) is not inside the tread width");
-    outer_y_break(yc - hw);
-    outer_y_break(yc + hw);
-  }
-  // Soft breaks: region boundaries along the contour.
-  both_sides(len - design.bead_height, false);
-  both_sides(len - design.flange_height, false);
-  both_sides(len - design.rim_strip_height, false);
-  both_sides(len - design.bead_height - design.apex_height, false);
-  // Belt edges: where the belt layers reach their half widths (the carcass keeps
-  // widening further down, so the belts are the stations inside these).
-  const double u_belt1 = profile.station_at_y(2, design.belt1_half_width);
-  const double u_belt2 = profile.station_at_y(3, design.belt2_half_width);
-  both_sides(u_belt1, false);
-  both_sides(u_belt2, false);
-  for (double u = 0.0; u < len; u += 1e-4)
-    if (!profile.in_tread_zone(u)) {
-      both_sides(u, false);
-      break;
-    }
-  const std::vector<double> kept = place_breaks(breaks, 0.4 * h);
-
-  // --- stations: equal steps of the meridional metric between breaks
-  std::vector<double> stations{kept.front()};
-  for (size_t b = 0; b + 1 < kept.size(); ++b) {
-    const double m0 = profile.metric(kept[b]), m1 = profile.metric(kept[b + 1]);
-    const int n = std::max(1, static_cast<int>(std::ceil((m1 - m0) / h - 0.1)));
-    for (int j = 1; j < n; ++j) stations.push_back(profile.station_at_metric(m0 + (m1 - m0) * j / n));
-    stations.push_back(kept[b + 1]);
-  }
+  const StationBreaks breaks = station_breaks(design, profile, pattern, h);
+  const std::vector<double> stations = place_stations(profile, breaks.kept, h);
   const int ns = static_cast<int>(stations.size());
 
   CrossSection s;
   for (int i = 0; i < ns; ++i)
     for (int k = 0; k < nb; ++k) s.nodes.push_back(profile.point(stations[i], k));
   const auto node = [nb](int i, int k) { return i * nb + k; };
-
-  for (int i = 0; i + 1 < ns; ++i) {
-    const double uc = 0.5 * (stations[i] + stations[i + 1]);
-    const double from_bead = profile.from_bead(uc);
-    const bool tread_zone = profile.in_tread_zone(uc);
-    for (int k = 0; k + 1 < nb; ++k) {
-      Region r;
-      if (k == 0) {
-        r = Region::inner_liner;
-      } else if (k == 1) {
-        r = Region::ply;
-      } else if (k == 2 || k == 3) {
-        if (std::abs(uc) < (k == 2 ? u_belt1 : u_belt2)) r = k == 2 ? Region::belt_1 : Region::belt_2;
-        else if (from_bead < design.bead_height) r = Region::bead;
-        else if (from_bead < design.bead_height + design.apex_height) r = Region::filler;
-        else r = tread_zone ? Region::tread : Region::sidewall;
-      } else {
-        if (tread_zone) r = Region::tread;
-        else if (from_bead < design.rim_strip_height) r = Region::rim_strip;
-        else r = Region::sidewall;
-      }
-      const std::array<int, 4> q{node(i, k), node(i, k + 1), node(i + 1, k + 1), node(i + 1, k)};
-      s.quads.push_back(q);
-      s.quad_region.push_back(r);
-      // Layer direction: mean of the two edges along the contour (from the y < 0
-      // bead towards the y > 0 one); thickness = area / mean length along it.
-      const Eigen::Vector2d along = (s.nodes[q[3]] - s.nodes[q[0]]) + (s.nodes[q[2]] - s.nodes[q[1]]);
-      const bool rebar = r == Region::ply || r == Region::belt_1 || r == Region::belt_2;
-      s.quad_layer_tangent.push_back(rebar ? along.normalized() : Eigen::Vector2d::Zero());
-      const int qi = static_cast<int>(s.quads.size()) - 1;
-      s.quad_layer_thickness_m.push_back(signed_area(s, qi) / (0.5 * along.norm()));
-      if (k == 0) s.inner_liner_edges.push_back({qi, 3});
-    }
-  }
+  add_quads(design, profile, stations, breaks, s);
 
   // Rim: both bead seats (all nodes of the end stations) and the outer nodes
   // against the flange.
@@ -212,19 +259,7 @@ CrossSection make_cross_section(const TyreSize& size, const TreadPattern& patter
   const int centre = static_cast<int>(std::find(stations.begin(), stations.end(), 0.0) - stations.begin());
   s.tread_centre_node = node(centre, outer);
   s.tread_half_width_m = design.tread_half_width;
-
-  // Quality gate: every quad strictly convex and counter-clockwise.
-  for (size_t q = 0; q < s.quads.size(); ++q) {
-    for (int k = 0; k < 4; ++k) {
-      const Eigen::Vector2d a = s.nodes[s.quads[q][k]], b = s.nodes[s.quads[q][(k + 1) % 4]],
-                            c = s.nodes[s.quads[q][(k + 2) % 4]];
-      const Eigen::Vector2d e1 = b - a, e2 = c - b;
-      if (e1.x() * e2.y() - e1.y() * e2.x() <= 0.0)
-        throw cosim::Error("tyre cross-section generator: distorted element at r = " +
-                           cosim::number_text(a.x()) + " m, y = " + cosim::number_text(a.y()) +
-                           " m; this size/pattern is outside what the generator can mesh");
-    }
-  }
+  check_quads_convex(s);
   return s;
 }
 
