@@ -77,15 +77,13 @@ const std::vector<int>* find_set(const std::map<std::string, std::vector<int>>& 
 
 using EdgeKey = std::pair<int, int>;
 EdgeKey edge_key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+using EdgeUses = std::map<EdgeKey, std::vector<std::array<int, 2>>>;
 
-}  // namespace
+// "file:line" for the messages about one line of the deck.
+std::string where(const std::string& inp_path, int line) { return inp_path + ":" + std::to_string(line); }
 
-CrossSection import_abaqus_cross_section(const std::string& inp_path, double tread_half_width_m) {
-  const AbaqusDeck deck = detail::read_abaqus_deck(inp_path);
-  const auto where = [&](int line) { return inp_path + ":" + std::to_string(line); };
-  if (deck.elements.empty()) throw cosim::Error(inp_path + ": no *ELEMENT of a supported type");
-
-  // Regions from the element sets.
+// Regions from the element sets: element id -> (region, the set that gave it).
+std::map<int, std::pair<Region, std::string>> element_regions(const AbaqusDeck& deck, const std::string& inp_path) {
   std::map<int, std::pair<Region, std::string>> element_region;
   for (const auto& [set_name, members] : deck.elsets) {
     Region r;
@@ -97,18 +95,23 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
                            it->second.second + " and ELSET " + set_name);
     }
   }
+  return element_region;
+}
 
-  // Used nodes in deck order.
+// The used nodes in deck order and the quads (counter-clockwise) with their
+// regions; returns the deck's node id -> node index.
+std::map<int, int> add_nodes_and_quads(const AbaqusDeck& deck,
+                                       const std::map<int, std::pair<Region, std::string>>& element_region,
+                                       const std::string& inp_path, CrossSection& s) {
   std::map<int, int> node_index;
   std::set<int> used;
   for (const auto& e : deck.elements)
     for (int n : e.nodes) {
       if (!deck.nodes.count(n))
-        throw cosim::Error(where(e.line) + ": element " + std::to_string(e.id) + " uses node " +
+        throw cosim::Error(where(inp_path, e.line) + ": element " + std::to_string(e.id) + " uses node " +
                            std::to_string(n) + " which is not defined by *NODE");
       used.insert(n);
     }
-  CrossSection s;
   for (int id : deck.node_order)
     if (used.count(id)) {
       node_index[id] = static_cast<int>(s.nodes.size());
@@ -118,7 +121,7 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
   for (const auto& e : deck.elements) {
     const auto reg = element_region.find(e.id);
     if (reg == element_region.end())
-      throw cosim::Error(where(e.line) + ": element " + std::to_string(e.id) +
+      throw cosim::Error(where(inp_path, e.line) + ": element " + std::to_string(e.id) +
                          " is in no region ELSET (tread, sidewall, inner_liner, ply, belt_1, "
                          "belt_2, bead, filler, rim_strip)");
     std::array<int, 4> q;
@@ -130,29 +133,37 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
       area2 += a.x() * b.y() - b.x() * a.y();
     }
     if (std::abs(area2) < 1e-14)
-      throw cosim::Error(where(e.line) + ": element " + std::to_string(e.id) + " has zero area");
+      throw cosim::Error(where(inp_path, e.line) + ": element " + std::to_string(e.id) + " has zero area");
     if (area2 < 0) q = {q[0], q[3], q[2], q[1]};
     s.quads.push_back(q);
     s.quad_region.push_back(reg->second.first);
   }
-  std::map<int, int> quad_of_element;
-  for (size_t i = 0; i < deck.elements.size(); ++i) quad_of_element[deck.elements[i].id] = static_cast<int>(i);
+  return node_index;
+}
 
-  // Edge adjacency.
-  std::map<EdgeKey, std::vector<std::array<int, 2>>> edge_uses;
+// Edge adjacency: the (quad, local edge) uses of every edge.
+EdgeUses edge_uses_of(const CrossSection& s) {
+  EdgeUses edge_uses;
   for (size_t q = 0; q < s.quads.size(); ++q)
     for (int k = 0; k < 4; ++k)
       edge_uses[edge_key(s.quads[q][k], s.quads[q][(k + 1) % 4])].push_back({static_cast<int>(q), k});
+  return edge_uses;
+}
 
-  // Layer direction of ply and belt quads: the edges shared with quads of the same
-  // region cross the layer, so the layer runs along the other pair of edges (the
-  // longer pair where that does not decide). Thickness = area / length along it.
+// The cavity's stand-in: the middle of the section's bounding box.
+Eigen::Vector2d bounding_box_middle(const CrossSection& s) {
   Eigen::Vector2d lo = s.nodes[0], hi = s.nodes[0];
   for (const auto& p : s.nodes) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const Eigen::Vector2d cavity = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+// Layer direction of ply and belt quads: the edges shared with quads of the same
+// region cross the layer, so the layer runs along the other pair of edges (the
+// longer pair where that does not decide). Thickness = area / length along it.
+void add_layer_directions(EdgeUses& edge_uses, const Eigen::Vector2d& cavity, CrossSection& s) {
   for (size_t q = 0; q < s.quads.size(); ++q) {
     const auto& n = s.quads[q];
     const auto shared_same = [&](int k) {
@@ -184,12 +195,15 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
       s.quad_layer_tangent.push_back(Eigen::Vector2d::Zero());
     }
   }
+}
 
-  // Rim nodes.
+// Rim nodes.
+std::vector<int> find_rim_nodes(const AbaqusDeck& deck, const std::map<int, int>& node_index, const CrossSection& s,
+                                const std::string& inp_path) {
   std::set<int> rim;
   if (const auto* set = find_set(deck.nsets, {"rim", "rimnodes"})) {
     for (int id : *set)
-      if (node_index.count(id)) rim.insert(node_index[id]);
+      if (node_index.count(id)) rim.insert(node_index.at(id));
     if (rim.empty()) throw cosim::Error(inp_path + ": NSET RIM contains no node of the cross-section");
   } else {
     double r_min = 1e30;
@@ -205,9 +219,13 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
     if (rim.empty())
       throw cosim::Error(inp_path + ": no NSET RIM and no bead or rim_strip elements to find the bead seat");
   }
-  s.rim_nodes.assign(rim.begin(), rim.end());
+  return std::vector<int>(rim.begin(), rim.end());
+}
 
-  // Inner liner edges.
+// Inner liner edges.
+void add_inner_liner_edges(const AbaqusDeck& deck, const std::map<int, int>& node_index,
+                           const std::map<int, int>& quad_of_element, const EdgeUses& edge_uses,
+                           const Eigen::Vector2d& cavity, const std::string& inp_path, CrossSection& s) {
   const auto quad_edge = [&](int quad, int a, int b) {
     for (int k = 0; k < 4; ++k)
       if (edge_key(s.quads[quad][k], s.quads[quad][(k + 1) % 4]) == edge_key(a, b)) return k;
@@ -220,9 +238,10 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
       if (normalised(name) == wanted) surface = &surf;
   if (surface) {
     for (const auto& face : surface->faces) {
-      const int quad = quad_of_element.count(face.element) ? quad_of_element[face.element] : -1;
+      const int quad = quad_of_element.count(face.element) ? quad_of_element.at(face.element) : -1;
       if (quad < 0)
-        throw cosim::Error(where(face.line) + ": surface face on unknown element " + std::to_string(face.element));
+        throw cosim::Error(where(inp_path, face.line) + ": surface face on unknown element " +
+                           std::to_string(face.element));
       const auto& e = deck.elements[quad];
       const int a = node_index.at(e.nodes[face.face]), b = node_index.at(e.nodes[(face.face + 1) % 4]);
       s.inner_liner_edges.push_back({quad, quad_edge(quad, a, b)});
@@ -230,7 +249,7 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
   } else if (const auto* set = find_set(deck.nsets, liner_names)) {
     std::set<int> on;
     for (int id : *set)
-      if (node_index.count(id)) on.insert(node_index[id]);
+      if (node_index.count(id)) on.insert(node_index.at(id));
     for (const auto& [key, uses] : edge_uses)
       if (uses.size() == 1 && on.count(key.first) && on.count(key.second)) s.inner_liner_edges.push_back(uses[0]);
   } else {
@@ -244,24 +263,47 @@ CrossSection import_abaqus_cross_section(const std::string& inp_path, double tre
     std::sort(s.inner_liner_edges.begin(), s.inner_liner_edges.end());
   }
   if (s.inner_liner_edges.empty()) throw cosim::Error(inp_path + ": no inner liner surface found");
+}
 
-  // Tread centre node.
+// Tread centre node.
+int find_tread_centre_node(const AbaqusDeck& deck, const std::map<int, int>& node_index, const EdgeUses& edge_uses,
+                           const CrossSection& s, const std::string& inp_path) {
+  int centre = s.tread_centre_node;
   if (const auto* set = find_set(deck.nsets, {"treadcentre", "treadcenter"})) {
     if (set->empty() || !node_index.count(set->front()))
       throw cosim::Error(inp_path + ": NSET TREAD_CENTRE names no node of the cross-section");
-    s.tread_centre_node = node_index[set->front()];
+    centre = node_index.at(set->front());
   } else {
     for (const auto& [key, uses] : edge_uses) {
       if (uses.size() != 1 || s.quad_region[uses[0][0]] != Region::tread) continue;
       for (int n : {key.first, key.second}) {
-        const int best = s.tread_centre_node;
+        const int best = centre;
         const auto& p = s.nodes[n];
         if (best < 0 || std::abs(p.y()) < std::abs(s.nodes[best].y()) - 1e-9 ||
             (std::abs(p.y()) <= std::abs(s.nodes[best].y()) + 1e-9 && p.x() > s.nodes[best].x()))
-          s.tread_centre_node = n;
+          centre = n;
       }
     }
   }
+  return centre;
+}
+
+}  // namespace
+
+CrossSection import_abaqus_cross_section(const std::string& inp_path, double tread_half_width_m) {
+  const AbaqusDeck deck = detail::read_abaqus_deck(inp_path);
+  if (deck.elements.empty()) throw cosim::Error(inp_path + ": no *ELEMENT of a supported type");
+  const auto element_region = element_regions(deck, inp_path);
+  CrossSection s;
+  const std::map<int, int> node_index = add_nodes_and_quads(deck, element_region, inp_path, s);
+  std::map<int, int> quad_of_element;
+  for (size_t i = 0; i < deck.elements.size(); ++i) quad_of_element[deck.elements[i].id] = static_cast<int>(i);
+  EdgeUses edge_uses = edge_uses_of(s);
+  const Eigen::Vector2d cavity = bounding_box_middle(s);
+  add_layer_directions(edge_uses, cavity, s);
+  s.rim_nodes = find_rim_nodes(deck, node_index, s, inp_path);
+  add_inner_liner_edges(deck, node_index, quad_of_element, edge_uses, cavity, inp_path, s);
+  s.tread_centre_node = find_tread_centre_node(deck, node_index, edge_uses, s, inp_path);
   s.tread_half_width_m = tread_half_width_m;
   return s;
 }
