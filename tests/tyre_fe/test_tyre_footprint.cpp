@@ -17,9 +17,8 @@ const std::vector<std::string> kCoarse = {"tyre.mesh.element_size_m=0.02", "tyre
                                           "tyre.tread.pitch_count=48", "tyre.mass_scaling_target_dt_s=2e-6"};
 
 nlohmann::json footprint(double pressure_Pa, const std::string& name) {
-  auto sets = kCoarse;
-  sets.push_back("tyre.inflation_pressure_Pa=" + std::to_string(pressure_Pa));
-  return tyre_support::run(tyre_support::scene_path("tyre_footprint"), sets, tyre_support::scratch(name));
+  return tyre_support::run_varied("tyre_footprint", kCoarse,
+                                  "tyre.inflation_pressure_Pa=" + std::to_string(pressure_Pa), name);
 }
 
 TEST(TyreFootprint, LoadedTyreComesToRestCarryingTheWheelLoad) {

@@ -43,9 +43,8 @@ const std::vector<std::string> kCoarse = {"tyre.mesh.element_size_m=0.03", "tyre
                                           "tyre.stages.rolling_s=0.45", "tyre.stages.average_last_s=0.25"};
 
 nlohmann::json roll(double torque_Nm, const std::string& name) {
-  auto sets = kCoarse;
-  sets.push_back("tyre.rim.drive_torque_Nm=" + std::to_string(torque_Nm));
-  return tyre_support::run(tyre_support::scene_path("tyre_rolling_road"), sets, tyre_support::scratch(name));
+  return tyre_support::run_varied("tyre_rolling_road", kCoarse,
+                                  "tyre.rim.drive_torque_Nm=" + std::to_string(torque_Nm), name);
 }
 
 TEST(TyreRolling, FreeRollingRadiusAndDrivingTorqueBalance) {

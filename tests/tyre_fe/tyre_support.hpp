@@ -29,4 +29,12 @@ inline nlohmann::json run(const std::string& scene_file, const std::vector<std::
   return tyre_fe::run_tyre_scene(*scene, {out, true, write_vtk, false});
 }
 
+// Runs the scene `scene_name` with the test's `sets` and one more override `extra`
+// (the quantity the test varies), writing into the scratch folder `name`.
+inline nlohmann::json run_varied(const std::string& scene_name, std::vector<std::string> sets,
+                                 const std::string& extra, const std::string& name) {
+  sets.push_back(extra);
+  return run(scene_path(scene_name), sets, scratch(name));
+}
+
 }  // namespace tyre_support
