@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "csv_lines.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -38,11 +39,7 @@ std::vector<Point> read_pairs(const std::string& path, bool skip_header) {
   std::ifstream in(path);
   EXPECT_TRUE(in.good()) << path;
   std::vector<Point> out;
-  std::string line;
-  bool header = skip_header;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) { header = false; continue; }
+  for (const std::string& line : test_support::csv_data_lines(in, skip_header)) {
     std::stringstream ss(line);
     Point p;
     char comma;

@@ -25,14 +25,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "tyre_fe/axisym.hpp"
+#include "tyre_material_data.hpp"
 
 namespace {
 
@@ -48,29 +45,6 @@ constexpr double kOtherStressTol = 0.01;  // times p (sigma_r and sigma_y are O(
 
 constexpr double kA = 0.1, kB = 0.2, kHeight = 0.01;
 constexpr int kRadial = 16;
-
-std::string data_dir() {
-  const char* env = std::getenv("COSIM_TEST_DATA");
-  return (env && *env) ? std::string(env) : std::string("tests/data/reference");
-}
-
-// density, C10, C20, C30 of the tread (thesis Table 5.4).
-std::vector<double> tread_row() {
-  const std::string path = data_dir() + "/rubber_yeoh.csv";
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot open " + path + " (set COSIM_TEST_DATA)");
-  std::string line;
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string cell;
-    std::getline(ss, cell, ',');
-    if (cell != "tread") continue;
-    std::vector<double> values;
-    while (std::getline(ss, cell, ',')) values.push_back(std::stod(cell));
-    return values;
-  }
-  throw std::runtime_error("no tread row in " + path);
-}
 
 // n_radial x 1 quads on a <= r <= b, 0 <= y <= height; pressure on the r = a edges.
 CrossSection thick_cylinder() {
@@ -138,13 +112,8 @@ void check_against_lame(const SolidMaterial& material, const Lame& lame) {
 }
 
 TEST(TyreLame, NearlyIncompressibleYeohRubber) {
-  const auto row = tread_row();
-  SolidMaterial rubber;
-  rubber.kind = SolidMaterial::Kind::yeoh;
-  rubber.yeoh.density_kg_per_m3 = row.at(0);
-  rubber.yeoh.C10_Pa = row.at(1);
-  rubber.yeoh.C20_Pa = row.at(2);
-  rubber.yeoh.C30_Pa = row.at(3);
+  // density, C10, C20, C30 of the tread (thesis Table 5.4).
+  SolidMaterial rubber = tyre_material_data::yeoh_rubber(tyre_material_data::csv_row("rubber_yeoh.csv", "tread"));
   const double mu = rubber.yeoh.initial_shear_modulus_Pa(), K = 1000 * mu;
   rubber.yeoh.bulk_modulus_Pa = K;
   // Small-strain constants of the Yeoh solid: mu0 = 2 C10, K0.

@@ -7,10 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,12 +14,14 @@
 #include <Eigen/LU>
 
 #include "tyre_fe/materials.hpp"
+#include "tyre_material_data.hpp"
 
 namespace {
 
 using tyre_fe::ElasticSolid;
 using tyre_fe::SolidMaterial;
 using tyre_fe::YeohRubber;
+using tyre_material_data::csv_row;
 
 // Uniaxial test at K0/mu0 = 1e4 with the lateral stress solved to zero: the nominal
 // stress differs from the incompressible closed form by O((J - 1) dlnP/dlnl) with
@@ -39,41 +37,9 @@ constexpr double kHookeRelTol = 1e-5;
 // 1e-12, round-off ~1e-16 / 1e-6 = 1e-10 relative.
 constexpr double kGradientRelTol = 1e-7;
 
-std::string data_dir() {
-  const char* env = std::getenv("COSIM_TEST_DATA");
-  return (env && *env) ? std::string(env) : std::string("tests/data/reference");
-}
-
-// The row of `file` whose first cell is `key`, '#' comments and the header skipped.
-std::vector<double> csv_row(const std::string& file, const std::string& key) {
-  const std::string path = data_dir() + "/" + file;
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot open " + path + " (set COSIM_TEST_DATA)");
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) { header = false; continue; }
-    std::stringstream ss(line);
-    std::string cell;
-    std::getline(ss, cell, ',');
-    if (cell != key) continue;
-    std::vector<double> values;
-    while (std::getline(ss, cell, ',')) values.push_back(std::stod(cell));
-    return values;
-  }
-  throw std::runtime_error("no row '" + key + "' in " + path);
-}
-
 // Tread rubber of thesis Table 5.4: density, C10, C20, C30.
 SolidMaterial tread_rubber(double bulk_over_shear) {
-  const auto row = csv_row("rubber_yeoh.csv", "tread");
-  SolidMaterial m;
-  m.kind = SolidMaterial::Kind::yeoh;
-  m.yeoh.density_kg_per_m3 = row.at(0);
-  m.yeoh.C10_Pa = row.at(1);
-  m.yeoh.C20_Pa = row.at(2);
-  m.yeoh.C30_Pa = row.at(3);
+  SolidMaterial m = tyre_material_data::yeoh_rubber(csv_row("rubber_yeoh.csv", "tread"));
   m.yeoh.bulk_modulus_Pa = bulk_over_shear * m.yeoh.initial_shear_modulus_Pa();
   return m;
 }
