@@ -49,11 +49,16 @@ std::vector<Point> read_pairs(const std::string& path, bool skip_header) {
   return out;
 }
 
-double interpolate(const std::vector<Point>& v, double t) {
+// Linear interpolation of the member `to` at `from` = x along v (monotone in `from`);
+// the last value beyond the end.
+double interpolate_along(const std::vector<Point>& v, double Point::*from, double Point::*to, double x) {
   for (std::size_t k = 1; k < v.size(); ++k)
-    if (v[k].t >= t) return v[k - 1].z + (v[k].z - v[k - 1].z) * (t - v[k - 1].t) / (v[k].t - v[k - 1].t);
-  return v.back().z;
+    if (v[k].*from >= x)
+      return v[k - 1].*to + (v[k].*to - v[k - 1].*to) * (x - v[k - 1].*from) / (v[k].*from - v[k - 1].*from);
+  return v.back().*to;
 }
+
+double interpolate(const std::vector<Point>& v, double t) { return interpolate_along(v, &Point::t, &Point::z, t); }
 
 TEST(WaterValidation, ColumnFloorPressureIsHydrostatic) {
   const auto out = test_support::scratch("water_column");
@@ -65,11 +70,7 @@ TEST(WaterValidation, ColumnFloorPressureIsHydrostatic) {
 }
 
 // Time at which the (monotone) front first reaches z.
-double arrival(const std::vector<Point>& v, double z) {
-  for (std::size_t k = 1; k < v.size(); ++k)
-    if (v[k].z >= z) return v[k - 1].t + (v[k].t - v[k - 1].t) * (z - v[k - 1].z) / (v[k].z - v[k - 1].z);
-  return v.back().t;
-}
+double arrival(const std::vector<Point>& v, double z) { return interpolate_along(v, &Point::z, &Point::t, z); }
 
 TEST(WaterValidation, DamBreakFrontFollowsMartinMoyce) {
   const auto out = test_support::scratch("dam_break");
