@@ -56,6 +56,16 @@ std::string error_of(const std::string& path, const std::vector<std::string>& se
   }
 }
 
+struct EditedScene {
+  std::string path, error;
+};
+
+// kValid with `from` replaced by `to`, written as the scene `name`, and its error ("" if accepted).
+EditedScene validate_edited(const std::string& name, const std::string& from, const std::string& to) {
+  const auto path = write_scene(name, replace(kValid, from, to));
+  return {path, error_of(path)};
+}
+
 TEST(SceneValidation, ValidSceneIsAccepted) {
   EXPECT_EQ(error_of(write_scene("valid", kValid)), "");
 }
@@ -68,28 +78,24 @@ TEST(SceneValidation, EveryShippedSceneIsValid) {
 }
 
 TEST(SceneValidation, UnknownFieldNamesLineAndSuggests) {
-  const auto path = write_scene("unknown", replace(kValid, "particle_spacing_m: 0.02", "particle_spacing: 0.02"));
-  const std::string e = error_of(path);
+  const auto [path, e] = validate_edited("unknown", "particle_spacing_m: 0.02", "particle_spacing: 0.02");
   EXPECT_NE(e.find(path + ":5:"), std::string::npos) << e;
   EXPECT_NE(e.find("unknown field \"particle_spacing\""), std::string::npos) << e;
   EXPECT_NE(e.find("Did you mean \"particle_spacing_m\""), std::string::npos) << e;
 }
 
 TEST(SceneValidation, WrongTypeNamesLine) {
-  const auto path = write_scene("type", replace(kValid, "particle_spacing_m: 0.02", "particle_spacing_m: \"fine\""));
-  const std::string e = error_of(path);
+  const auto [path, e] = validate_edited("type", "particle_spacing_m: 0.02", "particle_spacing_m: \"fine\"");
   EXPECT_NE(e.find(path + ":5:"), std::string::npos) << e;
 }
 
 TEST(SceneValidation, MissingValueIsNamed) {
-  const auto path = write_scene("missing", replace(kValid, "  particle_spacing_m: 0.02\n", ""));
-  const std::string e = error_of(path);
+  const std::string e = validate_edited("missing", "  particle_spacing_m: 0.02\n", "").error;
   EXPECT_NE(e.find("sph.particle_spacing_m (not set in the file): must be > 0"), std::string::npos) << e;
 }
 
 TEST(SceneValidation, NonPositiveSpacingNamesLineAndField) {
-  const auto path = write_scene("spacing", replace(kValid, "particle_spacing_m: 0.02", "particle_spacing_m: -0.01"));
-  const std::string e = error_of(path);
+  const auto [path, e] = validate_edited("spacing", "particle_spacing_m: 0.02", "particle_spacing_m: -0.01");
   EXPECT_NE(e.find(path + ":5:3: sph.particle_spacing_m: must be > 0"), std::string::npos) << e;
 }
 
@@ -119,15 +125,13 @@ TEST(SceneValidation, PoissonRatioOfOneHalfIsRefused) {
 }
 
 TEST(SceneValidation, BoxSmallerThanBlockIsRefused) {
-  const auto path = write_scene("box", replace(kValid, "max { x: 0.2 y: 0.2 z: 0.1 }", "max { x: 0.3 y: 0.2 z: 0.1 }"));
-  const std::string e = error_of(path);
+  const auto [path, e] = validate_edited("box", "max { x: 0.2 y: 0.2 z: 0.1 }", "max { x: 0.3 y: 0.2 z: 0.1 }");
   EXPECT_NE(e.find(path + ":10:"), std::string::npos) << e;
   EXPECT_NE(e.find("block does not fit in the container along x"), std::string::npos) << e;
 }
 
 TEST(SceneValidation, TimeStepAboveStableLimitIsRefusedWithTheLimit) {
-  const auto path = write_scene("dt", replace(kValid, "cfl: 0.3", "cfl: 0.3 fixed_dt_s: 1e-3"));
-  const std::string e = error_of(path);
+  const auto [path, e] = validate_edited("dt", "cfl: 0.3", "cfl: 0.3 fixed_dt_s: 1e-3");
   EXPECT_NE(e.find(path + ":2:"), std::string::npos) << e;
   EXPECT_NE(e.find("time.fixed_dt_s: time step 0.001 s is above the stable limit h / c = "), std::string::npos) << e;
 }
