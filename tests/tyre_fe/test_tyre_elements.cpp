@@ -276,6 +276,21 @@ TEST(Hex8, HourglassModeIsResisted) {
   }
 }
 
+// Each force component f[i][k] of the element's nodes x against the central difference
+// of its energy, (energy(x + step e_ik) - energy(x - step e_ik)) / (2 step), within tolerance.
+template <class Element, int N, int D, class Energy>
+void expect_forces_are_energy_gradient(const Element& x, const double (&f)[N][D], double step, double tolerance,
+                                       Energy energy) {
+  for (int i = 0; i < N; ++i)
+    for (int k = 0; k < D; ++k) {
+      Element xp = x, xm = x;
+      xp.x[i][k] += step;
+      xm.x[i][k] -= step;
+      const double derivative = (energy(xp) - energy(xm)) / (2 * step);
+      EXPECT_NEAR(f[i][k], derivative, tolerance);
+    }
+}
+
 TEST(Hex8, NodalForcesAreInEquilibriumAndAreTheEnergyGradient) {
   const Hex X = distorted_hex();
   const Hex8Reference ref = hex8_reference(X.x);
@@ -294,15 +309,8 @@ TEST(Hex8, NodalForcesAreInEquilibriumAndAreTheEnergyGradient) {
   }
   EXPECT_LE(sum.norm(), kRoundOff * scale);
   EXPECT_LE(moment.norm(), kRoundOff * scale);
-  const double step = 1e-6;
-  for (int i = 0; i < 8; ++i)
-    for (int k = 0; k < 3; ++k) {
-      Hex xp = x, xm = x;
-      xp.x[i][k] += step;
-      xm.x[i][k] -= step;
-      const double derivative = (hex_energy(ref, m, xp) - hex_energy(ref, m, xm)) / (2 * step);
-      EXPECT_NEAR(f[i][k], derivative, kGradientRelTol * scale);
-    }
+  expect_forces_are_energy_gradient(x, f, 1e-6, kGradientRelTol * scale,
+                                    [&](const Hex& y) { return hex_energy(ref, m, y); });
 }
 
 TEST(Hex8, InvertedHexThrows) {
@@ -468,16 +476,10 @@ TEST(Quad4Axi, NetForcesAndEnergyGradient) {
   for (auto& fi : f) sum_r += fi[0], sum_y += fi[1], scale += std::hypot(fi[0], fi[1]);
   EXPECT_NEAR(sum_y, 0.0, kRoundOff * scale);
   EXPECT_NEAR(sum_r, hoop_total, kRoundOff * scale);
-  const double step = 1e-8;
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 2; ++k) {
-      Quad xp = x, xm = x;
-      xp.x[i][k] += step;
-      xm.x[i][k] -= step;
-      double g[4][2];
-      const double derivative = (quad_forces(ref, m, xp, g) - quad_forces(ref, m, xm, g)) / (2 * step);
-      EXPECT_NEAR(f[i][k], derivative, kGradientRelTol * scale);
-    }
+  expect_forces_are_energy_gradient(x, f, 1e-8, kGradientRelTol * scale, [&](const Quad& y) {
+    double g[4][2];
+    return quad_forces(ref, m, y, g);
+  });
 }
 
 TEST(Quad4Axi, PatchTestOnGradedRectangularGrid) {
