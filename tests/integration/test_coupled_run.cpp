@@ -362,6 +362,18 @@ TEST(CoupledRun, TreadBlockLeavesARutWithoutPenetrationAndBalancesMomentum) {
   expect_momentum_balance_of(run, 0.01);
 }
 
+// The --set options that place the water under the sliding block: the container's
+// floor at `floor_z` (the block's region starts there too) and its far end at
+// `container_max_x`, the block's region from `min_x` to `max_x` and +-`half_width_y`.
+std::string block_slide_particles(const std::string& floor_z, const std::string& container_max_x,
+                                  const std::string& min_x, const std::string& max_x,
+                                  const std::string& half_width_y) {
+  return " --set sph.container.min.z=" + floor_z + " --set sph.container.max.x=" + container_max_x +
+         " --set sph.blocks[0].region.min.x=" + min_x + " --set sph.blocks[0].region.max.x=" + max_x +
+         " --set sph.blocks[0].region.min.y=-" + half_width_y + " --set sph.blocks[0].region.max.y=" + half_width_y +
+         " --set sph.blocks[0].region.min.z=" + floor_z;
+}
+
 // The coarse sliding block of the suite (5 mm elements, 0.5 mm particles, the
 // face starting on the film's top, 10 ms of hold, a 20 ms speed ramp, 40 ms of
 // slide averaged over its last 15 ms); `film` places the water.
@@ -389,10 +401,7 @@ std::pair<int, std::string> run_block_slide(const std::string& dir, int domain, 
 TEST(CoupledRun, ABlockSlidingOnTheBareRoadMeetsCoulombAndBalancesItsPull) {
   const auto dir = test_support::scratch("block_slide_dry");
   auto [code, out] = run_block_slide(dir, 16,
-                                     " --set sph.container.min.z=-0.0005 --set sph.container.max.x=0.2"
-                                     " --set sph.blocks[0].region.min.x=0.15 --set sph.blocks[0].region.max.x=0.17"
-                                     " --set sph.blocks[0].region.min.y=-0.01 --set sph.blocks[0].region.max.y=0.01"
-                                     " --set sph.blocks[0].region.min.z=-0.0005");
+                                     block_slide_particles("-0.0005", "0.2", "0.15", "0.17", "0.01"));
   ASSERT_EQ(code, 0) << out;
   const SceneRun run = read_run(dir);
   const auto& block = run.tyre["results"];
@@ -428,10 +437,7 @@ TEST(CoupledRun, ABlockSlidingOnTheBareRoadMeetsCoulombAndBalancesItsPull) {
 TEST(CoupledRun, ABlockSlidingIntoAWaterFilmPushesItAheadAndKeepsItsFrictionWithinCoulomb) {
   const auto dir = test_support::scratch("block_slide_film");
   auto [code, out] = run_block_slide(dir, 17,
-                                     " --set sph.container.min.z=-0.001 --set sph.container.max.x=0.08"
-                                     " --set sph.blocks[0].region.min.x=0.03 --set sph.blocks[0].region.max.x=0.06"
-                                     " --set sph.blocks[0].region.min.y=-0.015 --set sph.blocks[0].region.max.y=0.015"
-                                     " --set sph.blocks[0].region.min.z=-0.001");
+                                     block_slide_particles("-0.001", "0.08", "0.03", "0.06", "0.015"));
   ASSERT_EQ(code, 0) << out;
   const SceneRun run = read_run(dir);
   const auto& block = run.tyre["results"];
