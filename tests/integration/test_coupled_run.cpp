@@ -386,6 +386,14 @@ std::pair<int, std::string> run_block_slide(const std::string& dir, int domain, 
                " --set tread_block.average_last_s=0.015");
 }
 
+// Runs the block slide into `dir` and reads its summaries into *run; fails the
+// test if the run did not complete.
+void slide_block(const std::string& dir, int domain, const std::string& film, SceneRun* run) {
+  auto [code, out] = run_block_slide(dir, domain, film);
+  ASSERT_EQ(code, 0) << out;
+  *run = read_run(dir);
+}
+
 // The sliding block of thesis 4.3 on the bare road (its water film a small patch
 // out of its way, so that the slide is the block's and the road's alone): the
 // holder pulls it at 0.5 m/s under 300 N. Coarse: 5 mm elements. The face starts
@@ -400,10 +408,8 @@ std::pair<int, std::string> run_block_slide(const std::string& dir, int domain, 
 //   the road's mean normal force is the load (measured 0.2 %, bound 3 %).
 TEST(CoupledRun, ABlockSlidingOnTheBareRoadMeetsCoulombAndBalancesItsPull) {
   const auto dir = test_support::scratch("block_slide_dry");
-  auto [code, out] = run_block_slide(dir, 16,
-                                     block_slide_particles("-0.0005", "0.2", "0.15", "0.17", "0.01"));
-  ASSERT_EQ(code, 0) << out;
-  const SceneRun run = read_run(dir);
+  SceneRun run;
+  ASSERT_NO_FATAL_FAILURE(slide_block(dir, 16, block_slide_particles("-0.0005", "0.2", "0.15", "0.17", "0.01"), &run));
   const auto& block = run.tyre["results"];
   const double load = 300.0, mu = 0.3;
   EXPECT_NEAR(block["road_vertical_force_N"].get<double>(), load, 0.03 * load);
@@ -436,10 +442,8 @@ TEST(CoupledRun, ABlockSlidingOnTheBareRoadMeetsCoulombAndBalancesItsPull) {
 // crushed between the face and the road (k r = 0.45 N at c = 60 m/s).
 TEST(CoupledRun, ABlockSlidingIntoAWaterFilmPushesItAheadAndKeepsItsFrictionWithinCoulomb) {
   const auto dir = test_support::scratch("block_slide_film");
-  auto [code, out] = run_block_slide(dir, 17,
-                                     block_slide_particles("-0.001", "0.08", "0.03", "0.06", "0.015"));
-  ASSERT_EQ(code, 0) << out;
-  const SceneRun run = read_run(dir);
+  SceneRun run;
+  ASSERT_NO_FATAL_FAILURE(slide_block(dir, 17, block_slide_particles("-0.001", "0.08", "0.03", "0.06", "0.015"), &run));
   const auto& block = run.tyre["results"];
   const double load = 300.0, mu = 0.3;
   const double pull = block["longitudinal_force_N"].get<double>();
