@@ -18,6 +18,7 @@
 #include "cosim/participant.hpp"
 #include "cosim/surface_exchange.hpp"
 #include "cosim_coupling/exchange_topics.hpp"
+#include "cosim_coupling/session_link.hpp"
 
 namespace coupler {
 namespace {
@@ -30,50 +31,48 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 //   tyre's surface in -> friction per facet -> surface out to the terrain ->
 //   wheel state in -> terrain's loads in -> loads out to the tyre -> decomposition.
 // The physics of each is in the coupler library; here are the hooks and the topics.
-class CouplerRun final : public cosim::Participant {
+class CouplerRun final : public cosim::coupling::CoupledParticipant {
  public:
   static constexpr std::uint64_t kPaceEvery = 20;
   CouplerRun(Session& session, const cosim::LoadedScene& loaded, const HubOptions& options)
-      : session_(session), loaded_(loaded), scene_(loaded.message), options_(options) {}
+      : CoupledParticipant(&link_),
+        session_(session),
+        link_(session, step_, "coupler"),
+        loaded_(loaded),
+        scene_(loaded.message),
+        options_(options) {}
 
   double initialize(cosim::RunRecord& record) override;
-  bool advance() override;
   double time_s() const override { return sim_time_; }
   std::uint64_t steps() const override { return step_; }
   void output(cosim::RunRecord&) override {}
   void finalize(cosim::RunRecord& record) override;
-  void abort(const std::string& reason) noexcept override {
-    try {
-      session_.send_failure(step_, std::string("coupler: ") + reason);
-    } catch (const std::exception&) {
-    }
-  }
   void plots(cosim::RunRecord& record) override {
-    if (joined_) plot_coupler_outputs(record, scene_);
+    if (joined()) plot_coupler_outputs(record, scene_);
   }
 
   // Checkpoints between windows (docs/reliability.md, "Coupled runs").
   bool can_checkpoint() const override { return true; }
-  bool coupled() const override { return true; }
   std::optional<std::uint64_t> exchanges_completed() const override {
-    return joined_ ? std::optional<std::uint64_t>(step_) : std::nullopt;
+    return joined() ? std::optional<std::uint64_t>(step_) : std::nullopt;
   }
-  double coupling_window_s() const override { return window_.window_s; }
-  bool request_checkpoint_stop() override {
-    session_.request_checkpoint_stop();
-    return true;
-  }
-  std::uint64_t checkpoint_stop_exchange() const override { return session_.checkpoint_stop_exchange(); }
   void save(cosim::CheckpointWriter& out) const override;
   void restore(const cosim::CheckpointReader& in) override;
 
+ private:
+  // The coupler's whole window is its exchange; the decomposition follows it.
+  bool before_exchange() override { return true; }
+  bool exchange() override;
+  bool after_exchange(bool peers_go_on) override;
  private:
   void open_topics();
   void join_peers(cosim::RunRecord& record, const SceneFriction& friction);
   void take_surface_mesh(cosim::RunRecord& record, const SceneFriction& friction);
   void open_series(cosim::RunRecord& record);
 
+  std::uint64_t step_ = 0;  // before link_, which reads it
   Session& session_;
+  cosim::coupling::SessionLink link_;
   const cosim::LoadedScene& loaded_;
   const cosim::scene::Scene& scene_;
   HubOptions options_;
@@ -101,10 +100,8 @@ class CouplerRun final : public cosim::Participant {
   ResidualWatch residuals_;
   FacetLoads last_facets_;
   DecompositionOptions decomposition_;
-  std::uint64_t step_ = 0;
   double sim_time_ = 0.0;
   ExchangePayload payload_;
-  bool joined_ = false;
 };
 
 void CouplerRun::open_topics() {
@@ -135,7 +132,7 @@ void CouplerRun::join_peers(cosim::RunRecord& record, const SceneFriction& frict
   if (!options_.quiet)
     std::fprintf(stderr, "[coupler] started: window %.4g s, %d tyre sub-steps (tyre %.4g s, terrain %.4g s)\n",
                  window_.window_s, window_.tyre_substeps, window_.tyre_proposed_dt_s, window_.terrain_proposed_dt_s);
-  joined_ = true;
+  joined_with_window(window_.window_s);
   mesh_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
   tyre_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
   wheel_filter_ = std::make_unique<tp::SampleFilter>(session_.run_id());
@@ -181,7 +178,7 @@ double CouplerRun::initialize(cosim::RunRecord& record) {
   return cosim::planned_end_time_s(scene_);  // the FE body's stages: the coupled run's end
 }
 
-bool CouplerRun::advance() {
+bool CouplerRun::exchange() {
   // Exchange, in: the tyre's surface of this window.
   if (!session_.wait_step(*tyre_kinematics_in_, *tyre_filter_, step_, k_, "SurfaceKinematics", tp::Role::tyre))
     return false;
@@ -208,6 +205,11 @@ bool CouplerRun::advance() {
   tyre_loads_out_->write(loads_);
   payload_.forwarding_s += seconds_since(t1);
   payload_.loaded_nodes += loads_.nodes.size();
+  return true;
+}
+
+bool CouplerRun::after_exchange(bool peers_go_on) {
+  if (!peers_go_on) return false;
   sim_time_ = k_.header.sim_time_s;
   // The decomposition (thesis ch. 2), from the current facet geometry.
   surface_.update(k_);
@@ -256,7 +258,7 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
   for (const auto* f : {mesh_filter_.get(), tyre_filter_.get(), wheel_filter_.get(), terrain_filter_.get()})
     if (f) session_.count_rejections(*f);
   summary["rejected_samples"] = {{"other_run", session_.rejected_run_id()}, {"wrong_step", session_.rejected_step()}};
-  if (!joined_) return;
+  if (!joined()) return;
   put_window_results(means_, results);
   residuals_.put_results(results);
   const double wall = record.wall_s();
