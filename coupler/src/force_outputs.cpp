@@ -1,13 +1,16 @@
 // The coupler's contact pressure map and plots; see force_outputs.hpp.
 #include "coupler/force_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <vector>
 
+#include "coupler/exchange_forces.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/signal.hpp"
 
@@ -15,22 +18,42 @@ namespace coupler {
 
 namespace {
 
-// Columns time_s and F3, F1, F2, F5, drawbar pull (0-based 0, 2, 3, 4, 7, 8) of
-// forces.csv, streamed (a long run's file has a row per window); false if unreadable.
+// The forces.csv columns drawn, by name: F3, F1, F2, F5 and the drawbar pull.
+const char* const kPlottedColumns[5] = {"traction_force_N", "motion_resistance_N", "groove_force_N",
+                                        "rolling_resistance_force_N", "drawbar_pull_N"};
+
+// 0-based position of `name` in `header`; -1 if absent.
+int column_of(const std::vector<std::string>& header, const std::string& name) {
+  for (std::size_t k = 0; k < header.size(); ++k)
+    if (header[k] == name) return static_cast<int>(k);
+  return -1;
+}
+
+std::vector<std::string> split_row(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream row(line);
+  for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+// time_s and the plotted columns of forces.csv, found by their names in its
+// header and streamed (a long run's file has a row per window); false if
+// unreadable or a column is missing.
 bool read_force_columns(const std::string& path, std::vector<double>& t, std::vector<std::vector<double>>& forces) {
   std::ifstream in(path);
   if (!in) return false;
-  std::string line, cell;
-  std::getline(in, line);  // header
-  const int wanted[5] = {2, 3, 4, 7, 8};
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = split_row(line);
+  const int time_column = column_of(header, "time_s");
+  int wanted[5];
+  for (int j = 0; j < 5; ++j) wanted[j] = column_of(header, kPlottedColumns[j]);
+  if (time_column < 0 || *std::min_element(wanted, wanted + 5) < 0) return false;
   while (std::getline(in, line)) {
-    std::stringstream row(line);
-    double v[9];
-    int k = 0;
-    for (; k < 9 && std::getline(row, cell, ','); ++k) v[k] = std::strtod(cell.c_str(), nullptr);
-    if (k < 9) return false;
-    t.push_back(v[0]);
-    for (int j = 0; j < 5; ++j) forces[j].push_back(v[wanted[j]]);
+    const std::vector<std::string> cells = split_row(line);
+    if (cells.size() < header.size()) return false;
+    t.push_back(std::strtod(cells[time_column].c_str(), nullptr));
+    for (int j = 0; j < 5; ++j) forces[j].push_back(std::strtod(cells[wanted[j]].c_str(), nullptr));
   }
   return true;
 }
@@ -82,8 +105,9 @@ void plot_coupler_outputs(cosim::RunRecord& record, const cosim::scene::Scene& s
     o.extra_commands = "set object 1 rect from " + std::to_string(results["averaging_window_start_s"].get<double>()) +
                        ", graph 0 to " + std::to_string(results["averaging_window_end_s"].get<double>()) +
                        ", graph 1 behind fc rgb '#eeeeee' fs solid noborder\n";
-  // forces.csv columns of F3, F1, F2, F5, drawbar pull; forces_filtered.csv columns 2-6.
-  const int raw_column[5] = {3, 4, 5, 8, 9};
+  // forces.csv's columns of F3, F1, F2, F5, drawbar pull (gnuplot counts from 1); forces_filtered.csv's 2-6.
+  int raw_column[5];
+  for (int k = 0; k < 5; ++k) raw_column[k] = column_of(forces_csv_columns(), kPlottedColumns[k]) + 1;
   const char* names[5] = {"traction F3", "motion resistance F1", "groove F2", "F5", "drawbar pull"};
   const char* colours[5] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#000000"};
   std::vector<cosim::PlotCurve> curves;
