@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cosim/error.hpp"
+#include "cosim/guarded_main.hpp"
 #include "cosim/interrupt.hpp"
 #include "monitor.hpp"
 #include "study.hpp"
@@ -75,7 +76,7 @@ int main(int argc, char** argv) {
   monitor_cmd->add_option("--max-samples", monitor.max_samples, "stop after this many samples");
   monitor_cmd->add_option("--idle-timeout", monitor.idle_timeout_s, "stop after this long without samples [s]");
   CLI11_PARSE(app, argc, argv);
-  try {
+  return cosim::guarded_main("cosim", [&] {
     if (*run_cmd) return cosim::run_scene_processes(run);
     if (*check_cmd) {
       cosim::check_scene(*cosim::load_scene(check_file, check_sets));
@@ -104,11 +105,5 @@ int main(int argc, char** argv) {
     }
     return cosim::run_study(
         {study_file, study_out, study_no_vtk, study_resume, study_pass, study_tabulate, study_cases});
-  } catch (const cosim::Error& e) {
-    std::fprintf(stderr, "cosim: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "cosim: internal error: %s\n", e.what());
-    return 3;
-  }
+  });
 }

@@ -9,20 +9,20 @@
 
 #include "cosim_coupling/cli.hpp"
 #include "cosim/error.hpp"
+#include "cosim/guarded_main.hpp"
 #include "cosim/interrupt.hpp"
 #include "hub.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"coupler: keeps tyre_fe and the terrain in step, decides friction, decomposes the contact force"};
-  cosim::coupling::SceneCli cli;
-  cli.add_to(app, false);
-  cosim::coupling::RestartCli restart;
-  restart.add_to(app);
-  cosim::coupling::CouplingCli coupling;
-  coupling.add_to(app, false);
+  cosim::coupling::ProgramCli command_line;
+  command_line.add_to(app, false);
+  const auto& cli = command_line.scene;
+  const auto& restart = command_line.restart;
+  const auto& coupling = command_line.coupling;
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
-  try {
+  return cosim::guarded_main("coupler", [&] {
     const auto scene = cosim::load_scene(cli.scene_file, cli.sets);
     if (!cosim::has_fe_body(scene->message) || !scene->message.has_sph())
       throw cosim::Error(cli.scene_file +
@@ -37,11 +37,5 @@ int main(int argc, char** argv) {
       cosim::coupling::exit_after_failure("coupler", e);
     }
 
-  } catch (const cosim::Error& e) {
-    std::fprintf(stderr, "coupler: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "coupler: internal error: %s\n", e.what());
-    return 3;
-  }
+  });
 }

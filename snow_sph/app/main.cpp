@@ -10,6 +10,7 @@
 
 #include "cosim_coupling/cli.hpp"
 #include "cosim/error.hpp"
+#include "cosim/guarded_main.hpp"
 #include "cosim/result_references.hpp"
 #include "dds_surface_exchange.hpp"
 #include "cosim/interrupt.hpp"
@@ -18,15 +19,14 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"snow_sph: SPH terrain (snow: Drucker-Prager/Cap; water: Us-Up EOS)"};
-  cosim::coupling::SceneCli cli;
-  cli.add_to(app, true);
-  cosim::coupling::RestartCli restart;
-  restart.add_to(app);
-  cosim::coupling::CouplingCli coupling;
-  coupling.add_to(app, true);
+  cosim::coupling::ProgramCli command_line;
+  command_line.add_to(app, true);
+  const auto& cli = command_line.scene;
+  const auto& restart = command_line.restart;
+  const auto& coupling = command_line.coupling;
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
-  try {
+  return cosim::guarded_main("snow_sph", [&] {
     const auto scene = snow_sph::load_sph_scene(cli.scene_file, cli.sets);
     if (cli.check) {
       std::printf("%s: ok\n", cli.scene_file.c_str());
@@ -55,11 +55,5 @@ int main(int argc, char** argv) {
     const auto summary = snow_sph::run_scene(*scene, options);
     cosim::print_results(summary);
     return 0;
-  } catch (const cosim::Error& e) {
-    std::fprintf(stderr, "snow_sph: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "snow_sph: internal error: %s\n", e.what());
-    return 3;
-  }
+  });
 }

@@ -10,6 +10,7 @@
 
 #include "cosim_coupling/cli.hpp"
 #include "cosim/error.hpp"
+#include "cosim/guarded_main.hpp"
 #include "cosim/result_references.hpp"
 #include "cosim/interrupt.hpp"
 #include "tyre_fe/run.hpp"
@@ -18,17 +19,16 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"tyre_fe: explicit FE tyre (axisymmetric inflation, 3D pitch model, rigid road)"};
-  cosim::coupling::SceneCli cli;
-  cli.add_to(app, true);
+  cosim::coupling::ProgramCli command_line;
+  command_line.add_to(app, true);
+  const auto& cli = command_line.scene;
+  const auto& restart = command_line.restart;
+  const auto& coupling = command_line.coupling;
   bool mesh_only = false;
   app.add_flag("--mesh-only", mesh_only, "write the meshes and their statistics, do not solve");
-  cosim::coupling::RestartCli restart;
-  restart.add_to(app);
-  cosim::coupling::CouplingCli coupling;
-  coupling.add_to(app, true);
   CLI11_PARSE(app, argc, argv);
   cosim::install_interrupt_handler();
-  try {
+  return cosim::guarded_main("tyre_fe", [&] {
     const auto scene = cosim::load_scene(cli.scene_file, cli.sets);
     cosim::ValidationReport report;
     tyre_fe::validate_fe_body_scene(*scene, report);
@@ -60,11 +60,5 @@ int main(int argc, char** argv) {
     const auto summary = tyre_fe::run_fe_body_scene(*scene, options);
     cosim::print_results(summary);
     return 0;
-  } catch (const cosim::Error& e) {
-    std::fprintf(stderr, "tyre_fe: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "tyre_fe: internal error: %s\n", e.what());
-    return 3;
-  }
+  });
 }

@@ -124,4 +124,19 @@ struct CouplingCli {
   }
 };
 
+// The options of a program of a coupled run, parsed in one place: the scene,
+// the restart and the coupling. `solver`: tyre_fe and snow_sph (--check,
+// --no-vtk, --coupled), not the coupler, which only runs coupled.
+struct ProgramCli {
+  SceneCli scene;
+  RestartCli restart;
+  CouplingCli coupling;
+
+  void add_to(CLI::App& app, bool solver) {
+    scene.add_to(app, solver);
+    restart.add_to(app);
+    coupling.add_to(app, solver);
+  }
+};
+
 }  // namespace cosim::coupling
