@@ -41,14 +41,7 @@ int main(int argc, char** argv) {
       snow_sph::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk};
       options.exchange = &exchange;
       options.restart = restart.requested(), options.restart_at = restart.step();
-      try {
-        const auto summary = snow_sph::run_scene(*scene, options);
-        cosim::print_results(summary);
-        return 0;
-      } catch (const std::exception& e) {
-        cosim::coupling::exit_after_failure("snow_sph", e);
-      }
-
+      return cosim::coupling::run_coupled_process("snow_sph", [&] { return snow_sph::run_scene(*scene, options); });
     }
     snow_sph::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk};
     options.restart = restart.requested(), options.restart_at = restart.step();

@@ -46,14 +46,7 @@ int main(int argc, char** argv) {
       tyre_fe::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk, mesh_only};
       options.terrain = &port;
       options.restart = restart.requested(), options.restart_at = restart.step();
-      try {
-        const auto summary = tyre_fe::run_fe_body_scene(*scene, options);
-        cosim::print_results(summary);
-        return 0;
-      } catch (const std::exception& e) {
-        cosim::coupling::exit_after_failure("tyre_fe", e);
-      }
-
+      return cosim::coupling::run_coupled_process("tyre_fe", [&] { return tyre_fe::run_fe_body_scene(*scene, options); });
     }
     tyre_fe::RunOptions options{cli.out_dir, cli.quiet, !cli.no_vtk, mesh_only};
     options.restart = restart.requested(), options.restart_at = restart.step();

@@ -15,6 +15,7 @@
 
 #include "cosim_coupling/session.hpp"
 #include "cosim/error.hpp"
+#include "cosim/result_references.hpp"
 #include "cosim/scene_io.hpp"
 
 namespace cosim::coupling {
@@ -27,6 +28,17 @@ namespace cosim::coupling {
   std::fprintf(stderr, "%s: error: %s\n", program, e.what());
   std::fflush(nullptr);
   std::_Exit(2);
+}
+
+// A coupled process's run: its results printed; on a failure the process ends
+// at once (exit_after_failure: the peers have been told, the outputs flushed).
+template <class Run> int run_coupled_process(const char* program, Run run) {
+  try {
+    cosim::print_results(run());
+    return 0;
+  } catch (const std::exception& e) {
+    exit_after_failure(program, e);
+  }
 }
 
 // The scene, its overrides, the output folder and the progress line, the same in the
