@@ -15,7 +15,8 @@ PACKAGES=(cmake g++ make git pkg-config
   nftables   # its lossy link where the kernel has no netem
   openssl    # scripts/make_test_ca.sh: the certificates of a secured DDS domain
   chromium   # headless: the study report test opens report.html in a real browser
-  clang-14 libclang-rt-14-dev libomp-14-dev)  # the fuzz targets (libFuzzer, sanitizers): scripts/fuzz.sh
+  clang-14 libclang-rt-14-dev libomp-14-dev  # the fuzz targets (libFuzzer, sanitizers): scripts/fuzz.sh
+  clang-format-14)  # scripts/check_format.sh: the lines a change touches against .clang-format
 
 missing=()
 for p in "${PACKAGES[@]}"; do

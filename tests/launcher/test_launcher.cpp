@@ -128,8 +128,8 @@ TEST(Launcher, StudyWritesTableAndPlot) {
 // included, is the earlier run's) and runs the one whose summary is missing.
 TEST(Launcher, StudyResumeKeepsCompletedCasesAndRunsTheRest) {
   const auto dir = test_support::scratch("launcher_study_resume");
-  const std::string study = bin() + "/cosim study " + test_support::source_dir() + "/tests/launcher/test_launcher.textproto --out " +
-                            dir + " --no-vtk";
+  const std::string study = bin() + "/cosim study " + test_support::source_dir() +
+                            "/tests/launcher/test_launcher.textproto --out " + dir + " --no-vtk";
   auto [code, out] = shell(study);
   ASSERT_EQ(code, 0) << out;
   auto rows = [&] {

@@ -93,7 +93,8 @@ TEST(Drain, OnlyDrainableParticlesAndOnlyUnderFacetsThatFaceTheWall) {
 // held 1 mm above it: the water leaves the gap (sideways while it can, drained
 // once the film is thinner than half a particle) and the mass is accounted for.
 TEST(Drain, APlatePressedThroughAWaterLayerOntoTheFloorSqueezesItOut) {
-  const auto loaded = snow_sph::load_sph_scene(test_support::source_dir() + "/tests/snow_sph/test_sph_drain.textproto", {});
+  const auto loaded =
+      snow_sph::load_sph_scene(test_support::source_dir() + "/tests/snow_sph/test_sph_drain.textproto", {});
   snow_sph::Model model = snow_sph::build_model(loaded->message);
   snow_sph::Solver solver(model);
   SurfaceContactParameters contact;
@@ -158,7 +159,8 @@ TEST(Drain, APlatePressedThroughAWaterLayerOntoTheFloorSqueezesItOut) {
 // that go on above the box, and a splash falling back along one of them is not
 // a flow the box models (the sliding block's run blew up on such a splash).
 TEST(Drain, WaterThrownAboveTheOpenTopOfTheBoxLeavesTheTerrain) {
-  const auto loaded = snow_sph::load_sph_scene(test_support::source_dir() + "/tests/snow_sph/test_sph_drain.textproto", {});
+  const auto loaded =
+      snow_sph::load_sph_scene(test_support::source_dir() + "/tests/snow_sph/test_sph_drain.textproto", {});
   snow_sph::Model model = snow_sph::build_model(loaded->message);
   snow_sph::Particles& p = model.particles;
   double initial_kg = 0.0;
@@ -189,7 +191,8 @@ TEST(Drain, WaterThrownAboveTheOpenTopOfTheBoxLeavesTheTerrain) {
 // less than the margins used here (0.60 and 1.35 against 0.7 and 1.3), so the
 // outcome is the rule's, not the step's.
 TEST(Drain, WaterWhoseDensityLeavesTheValidRangeLeavesTheTerrain) {
-  const auto loaded = snow_sph::load_sph_scene(test_support::source_dir() + "/tests/snow_sph/test_sph_drain.textproto", {});
+  const auto loaded =
+      snow_sph::load_sph_scene(test_support::source_dir() + "/tests/snow_sph/test_sph_drain.textproto", {});
   snow_sph::Model model = snow_sph::build_model(loaded->message);
   for (auto& mat : model.materials) {
     ASSERT_EQ(mat.kind, snow_sph::MaterialModel::Kind::water);
