@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -89,9 +90,9 @@ void plot_coupler_outputs(cosim::RunRecord& record, const cosim::scene::Scene& s
   std::vector<std::vector<double>> filtered;
   for (const auto& series : raw) filtered.push_back(cosim::centred_moving_mean(t, series, filter_s));
   {
-    cosim::CsvWriter out(record.path("forces_filtered.csv"),
-                         {"time_s", "traction_force_N", "motion_resistance_N", "groove_force_N",
-                          "rolling_resistance_force_N", "drawbar_pull_N"});
+    std::vector<std::string> columns{"time_s"};
+    columns.insert(columns.end(), std::begin(kPlottedColumns), std::end(kPlottedColumns));
+    cosim::CsvWriter out(record.path("forces_filtered.csv"), columns);
     for (std::size_t i = 0; i < t.size(); ++i)
       out.row({t[i], filtered[0][i], filtered[1][i], filtered[2][i], filtered[3][i], filtered[4][i]});
   }
