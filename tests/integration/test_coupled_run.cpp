@@ -386,6 +386,10 @@ std::pair<int, std::string> run_block_slide(const std::string& dir, int domain, 
                " --set tread_block.average_last_s=0.015");
 }
 
+// The block's load and its friction on the road (configs/scenes/block_friction.textproto:
+// tread_block.load_N, road friction_coefficient).
+constexpr double kBlockLoad_N = 300.0, kRoadFriction = 0.3;
+
 // Runs the block slide into `dir` and reads its summaries into *run; fails the
 // test if the run did not complete.
 void slide_block(const std::string& dir, int domain, const std::string& film, SceneRun* run) {
@@ -411,7 +415,7 @@ TEST(CoupledRun, ABlockSlidingOnTheBareRoadMeetsCoulombAndBalancesItsPull) {
   SceneRun run;
   ASSERT_NO_FATAL_FAILURE(slide_block(dir, 16, block_slide_particles("-0.0005", "0.2", "0.15", "0.17", "0.01"), &run));
   const auto& block = run.tyre["results"];
-  const double load = 300.0, mu = 0.3;
+  const double load = kBlockLoad_N, mu = kRoadFriction;
   EXPECT_NEAR(block["road_vertical_force_N"].get<double>(), load, 0.03 * load);
   EXPECT_NEAR(-block["road_force_x_N"].get<double>(), block["longitudinal_force_N"].get<double>(), 5.0);
   EXPECT_LE(block["friction_coefficient"].get<double>(), mu);
@@ -445,13 +449,12 @@ TEST(CoupledRun, ABlockSlidingIntoAWaterFilmPushesItAheadAndKeepsItsFrictionWith
   SceneRun run;
   ASSERT_NO_FATAL_FAILURE(slide_block(dir, 17, block_slide_particles("-0.001", "0.08", "0.03", "0.06", "0.015"), &run));
   const auto& block = run.tyre["results"];
-  const double load = 300.0, mu = 0.3;
   const double pull = block["longitudinal_force_N"].get<double>();
   EXPECT_GT(block["friction_coefficient"].get<double>(), 0.0);
-  EXPECT_LE(block["friction_coefficient"].get<double>(), mu);
+  EXPECT_LE(block["friction_coefficient"].get<double>(), kRoadFriction);
   EXPECT_NEAR(-block["road_force_x_N"].get<double>() - block["water_force_x_N"].get<double>(), pull, 5.0);
-  EXPECT_NEAR(block["road_vertical_force_N"].get<double>() + block["water_vertical_force_N"].get<double>(), load,
-              0.03 * load);
+  EXPECT_NEAR(block["road_vertical_force_N"].get<double>() + block["water_vertical_force_N"].get<double>(),
+              kBlockLoad_N, 0.03 * kBlockLoad_N);
   EXPECT_LT(block["water_force_x_N"].get<double>(), 0.0);  // a drag, against the slide
   EXPECT_GT(block["water_force_x_N"].get<double>(), -0.1);
   EXPECT_LT(std::fabs(block["water_vertical_force_N"].get<double>()), 0.1);

@@ -94,57 +94,43 @@ inline SampleHeader header(std::uint64_t run_id, std::uint64_t step) {
   return {run_id, step, 1.25e-6 * static_cast<double>(step) + 3.0};
 }
 
-inline SurfaceMesh mesh_sample(std::uint64_t run_id, std::size_t n) {
-  SurfaceMesh m;
-  m.header = header(run_id, 0);
-  m.node_ids = ids(n, 100000);
-  m.x_m = doubles(n, 1);
-  m.y_m = doubles(n, 2);
-  m.z_m = doubles(n, 3);
-  m.facet_nodes = ids(4 * n, 5);
-  for (std::size_t i = 0; i < n; ++i) m.facet_tags.push_back(static_cast<FacetTag>(i % kFacetTagCount));
-  m.node_mass_kg = doubles(n, 6);
-  return m;
-}
-inline SurfaceKinematics kinematics_sample(std::uint64_t run_id, std::uint64_t step, std::size_t n) {
-  SurfaceKinematics k;
-  k.header = header(run_id, step);
-  k.nodes = ids(n, 11);
-  k.x_m = doubles(n, 1, step);
-  k.y_m = doubles(n, 2, step);
-  k.z_m = doubles(n, 3, step);
-  k.vx_mps = doubles(n, 4, step);
-  k.vy_mps = doubles(n, 5, step);
-  k.vz_mps = doubles(n, 6, step);
-  k.facets = ids(n / 2 + 1, 13);
-  k.friction_coefficient = doubles(n / 2 + 1, 7, step);
-  return k;
-}
-inline ContactLoads loads_sample(std::uint64_t run_id, std::uint64_t step, std::size_t n) {
-  ContactLoads l;
-  l.header = header(run_id, step);
-  l.nodes = ids(n, 17);
-  l.fx_N = doubles(n, 11, step);
-  l.fy_N = doubles(n, 12, step);
-  l.fz_N = doubles(n, 13, step);
-  l.facets = ids(n + 3, 19);
-  l.normal_force_N = doubles(n + 3, 14, step);
-  l.pressure_x_N = doubles(n + 3, 20, step);
-  l.pressure_y_N = doubles(n + 3, 21, step);
-  l.pressure_z_N = doubles(n + 3, 22, step);
-  l.tangential_x_N = doubles(n + 3, 15, step);
-  l.tangential_y_N = doubles(n + 3, 16, step);
-  l.tangential_z_N = doubles(n + 3, 17, step);
-  l.contact_area_m2 = doubles(n + 3, 18, step);
-  l.pressure_Pa = doubles(n + 3, 19, step);
-  return l;
-}
-inline WheelState wheel_sample(std::uint64_t run_id, std::uint64_t step) {
-  return {header(run_id, step), 0.125, 0.3125, 1.5, 2.7778, 9.25, 310.5, -42.75, 4000.5, -187.25};
-}
-inline ForceSummary forces_sample(std::uint64_t run_id, std::uint64_t step) {
-  return {header(run_id, step), 812.5, 95.25, 33.125, 41.5, 717.25, -12.5, 0.0625, 0.0185, 14.9375};
-}
+// Distinct values in every field of a topic, expanded from the table
+// (cosim/wire_fields.hpp), so that a field added to the IDL and the table is
+// filled and compared through every vendor pair without a line here. Field f's
+// array has n + f entries (none when n is 0), so that a conversion that sizes
+// one array by another's length is caught.
+struct SampleFill {
+  std::size_t n;
+  std::uint64_t step;
+  int field = 0;
+
+  std::size_t size() const { return n == 0 ? 0 : n + static_cast<std::size_t>(field); }
+  void operator()(std::vector<double>& v) { ++field, v = doubles(size(), field, step); }
+  void operator()(std::vector<std::uint32_t>& v) {
+    ++field, v = ids(size(), 1000u * static_cast<std::uint32_t>(field));
+  }
+  void operator()(std::vector<cosim::FacetTag>& v) {
+    ++field;
+    v.clear();
+    for (std::size_t i = 0; i < size(); ++i) v.push_back(static_cast<cosim::FacetTag>(i % cosim::kFacetTagCount));
+  }
+  void operator()(double& v) { ++field, v = 0.125 * field + 1.0e-3 * static_cast<double>(step) - 40.5; }
+};
+#define COSIM_FILL_FIELD(type, name, init) fill(sample.name);
+#define COSIM_SAMPLE(T, function)                                                  \
+  inline T function(std::uint64_t run_id, std::uint64_t step, std::size_t n = 3) { \
+    T sample;                                                                      \
+    sample.header = header(run_id, step);                                          \
+    SampleFill fill{n, step};                                                      \
+    COSIM_WIRE_FIELDS_##T(COSIM_FILL_FIELD) return sample;                         \
+  }
+COSIM_SAMPLE(SurfaceMesh, mesh_sample)
+COSIM_SAMPLE(SurfaceKinematics, kinematics_sample)
+COSIM_SAMPLE(ContactLoads, loads_sample)
+COSIM_SAMPLE(WheelState, wheel_sample)
+COSIM_SAMPLE(ForceSummary, forces_sample)
+#undef COSIM_SAMPLE
+#undef COSIM_FILL_FIELD
 inline RunControl control_sample(std::uint64_t run_id, std::uint64_t step) {
   return {header(run_id, step), ControlKind::failure, Role::coupler, Role::terrain, 2.5e-6, 1.5e-6,
           "terrain: particle 1234 left the domain (\"snow\" block)"};

@@ -30,8 +30,8 @@ TEST_P(LockStep, LateJoinerGetsTheDurableSurfaceMesh) {
   const std::uint64_t run = new_run_id();
   auto tyre = make_participant(GetParam().writer, loopback(domain));
   auto mesh_out = tyre->create_writer<SurfaceMesh>();
-  const SurfaceMesh first = mesh_sample(run, 50);
-  SurfaceMesh latest = mesh_sample(run, 120);  // keep-last 1: only this one is kept
+  const SurfaceMesh first = mesh_sample(run, 0, 50);
+  SurfaceMesh latest = mesh_sample(run, 0, 120);  // keep-last 1: only this one is kept
   latest.header.step = 1;
   mesh_out->write(first);
   mesh_out->write(latest);

@@ -39,7 +39,7 @@ class RoundTrip : public testing::TestWithParam<VendorPair> {
   std::unique_ptr<Participant> out_, in_;
 };
 
-TEST_P(RoundTrip, SurfaceMesh) { round_trip(std::vector<SurfaceMesh>{mesh_sample(kRun, 301)}); }
+TEST_P(RoundTrip, SurfaceMesh) { round_trip(std::vector<SurfaceMesh>{mesh_sample(kRun, 0, 301)}); }
 
 TEST_P(RoundTrip, SurfaceKinematics) {
   round_trip(std::vector<SurfaceKinematics>{kinematics_sample(kRun, 1, 257), kinematics_sample(kRun, 2, 0)});

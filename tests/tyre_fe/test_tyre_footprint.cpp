@@ -13,13 +13,11 @@ namespace {
 
 // Coarser than the scene (same physics) to keep the suite fast: 20 mm elements,
 // 48 circumferential divisions, more mass scaling (the end state is static).
-const std::vector<std::string> kCoarse = {"tyre.mesh.element_size_m=0.02", "tyre.tread.elements_per_pitch=1",
-                                          "tyre.tread.pitch_count=48", "tyre.mass_scaling_target_dt_s=2e-6"};
-
-nlohmann::json footprint(double pressure_Pa, const std::string& name) {
-  return tyre_support::run_varied("tyre_footprint", kCoarse,
-                                  "tyre.inflation_pressure_Pa=" + std::to_string(pressure_Pa), name);
-}
+// Each run sets the inflation pressure.
+const tyre_support::Variation footprint{"tyre_footprint",
+                                        {"tyre.mesh.element_size_m=0.02", "tyre.tread.elements_per_pitch=1",
+                                         "tyre.tread.pitch_count=48", "tyre.mass_scaling_target_dt_s=2e-6"},
+                                        "tyre.inflation_pressure_Pa"};
 
 TEST(TyreFootprint, LoadedTyreComesToRestCarryingTheWheelLoad) {
   const auto s200 = footprint(200e3, "tyre_footprint_200");

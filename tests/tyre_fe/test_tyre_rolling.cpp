@@ -39,13 +39,11 @@ void expect_energy_balance_closed(const nlohmann::json& results) {
 
 // 30 mm elements, 36 divisions (4,968 hexahedra); 0.45 s of rolling averaged over
 // the last 0.25 s (0.3 revolution, many periods of the rim-tyre torsional mode).
-const std::vector<std::string> kCoarse = {"tyre.mesh.element_size_m=0.03", "tyre.tread.pitch_count=36",
-                                          "tyre.stages.rolling_s=0.45", "tyre.stages.average_last_s=0.25"};
-
-nlohmann::json roll(double torque_Nm, const std::string& name) {
-  return tyre_support::run_varied("tyre_rolling_road", kCoarse,
-                                  "tyre.rim.drive_torque_Nm=" + std::to_string(torque_Nm), name);
-}
+// Each run sets the drive torque.
+const tyre_support::Variation roll{"tyre_rolling_road",
+                                   {"tyre.mesh.element_size_m=0.03", "tyre.tread.pitch_count=36",
+                                    "tyre.stages.rolling_s=0.45", "tyre.stages.average_last_s=0.25"},
+                                   "tyre.rim.drive_torque_Nm"};
 
 TEST(TyreRolling, FreeRollingRadiusAndDrivingTorqueBalance) {
   const auto free_run = roll(0.0, "tyre_rolling_free");

@@ -29,12 +29,18 @@ inline nlohmann::json run(const std::string& scene_file, const std::vector<std::
   return tyre_fe::run_tyre_scene(*scene, {out, true, write_vtk, false});
 }
 
-// Runs the scene `scene_name` with the test's `sets` and one more override `extra`
-// (the quantity the test varies), writing into the scratch folder `name`.
-inline nlohmann::json run_varied(const std::string& scene_name, std::vector<std::string> sets,
-                                 const std::string& extra, const std::string& name) {
-  sets.push_back(extra);
-  return run(scene_path(scene_name), sets, scratch(name));
-}
+// A test's family of runs: the scene `scene_name` with the test's `sets`, one
+// field (`varied_field`) set per run; each run writes into its scratch folder.
+struct Variation {
+  std::string scene_name;
+  std::vector<std::string> sets;
+  std::string varied_field;
+
+  nlohmann::json operator()(double value, const std::string& name) const {
+    auto all = sets;
+    all.push_back(varied_field + "=" + std::to_string(value));
+    return run(scene_path(scene_name), all, scratch(name));
+  }
+};
 
 }  // namespace tyre_support

@@ -7,16 +7,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include "cosim_coupling/session.hpp"
 #include "cosim/error.hpp"
+#include "cosim/guarded_main.hpp"
+#include "cosim/interrupt.hpp"
 #include "cosim/result_references.hpp"
 #include "cosim/scene_io.hpp"
+#include "cosim_coupling/session.hpp"
 
 namespace cosim::coupling {
 
@@ -75,6 +78,12 @@ struct RestartCli {
   bool requested() const { return restart || at >= 0; }
   std::optional<std::uint64_t> step() const {
     return at >= 0 ? std::optional<std::uint64_t>(static_cast<std::uint64_t>(at)) : std::nullopt;
+  }
+  // A solver's RunOptions: its `restart` and `restart_at`.
+  template <class RunOptions>
+  void apply_to(RunOptions& options) const {
+    options.restart = requested();
+    options.restart_at = step();
   }
 };
 
@@ -148,6 +157,18 @@ struct ProgramCli {
     scene.add_to(app, solver);
     restart.add_to(app);
     coupling.add_to(app, solver);
+  }
+
+  // The program's main: parse the command line (CLI11's own exit on --help or a
+  // bad option), take Ctrl-C as a request to stop, run `body` under guarded_main.
+  int parse_and_run(CLI::App& app, int argc, char** argv, const char* program, const std::function<int()>& body) {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      return app.exit(e);
+    }
+    cosim::install_interrupt_handler();
+    return cosim::guarded_main(program, body);
   }
 };
 
