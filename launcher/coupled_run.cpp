@@ -69,10 +69,27 @@ void print_force_means(const nlohmann::json& r, const nlohmann::json& performanc
       {"rim_longitudinal_force_N", "tyre on the rim, along x"},
       {"net_longitudinal_pressure_force_N", "net longitudinal pressure -F1 + F2"},
       {"vertical_pressure_force_N", "vertical pressure force F4"}};
-  for (const auto& [key, label] : rows)
-    if (r.contains(key)) std::printf("  %-38s %10.1f N\n", label, r[key].get<double>());
+  // A force whose mean still moves across the window (coupler: drift above 5 % or 20 N) is marked.
+  auto unsteady = [&](const char* key) {
+    if (!r.contains("unsteady_forces")) return false;
+    for (const auto& name : r["unsteady_forces"])
+      if (name == key) return true;
+    return false;
+  };
+  for (const auto& [key, label] : rows) {
+    if (!r.contains(key)) continue;
+    std::printf("  %-38s %10.1f N", label, r[key].get<double>());
+    if (unsteady(key))
+      std::printf("   not steady: %+.0f N from the window's first half to its second",
+                  r["window_drift"][key].get<double>());
+    std::printf("\n");
+  }
   if (r.contains("sinkage_m")) std::printf("  %-38s %10.1f mm\n", "sinkage", 1e3 * r["sinkage_m"].get<double>());
   if (r.contains("contact_area_m2")) std::printf("  %-38s %10.4f m^2\n", "contact area", r["contact_area_m2"].get<double>());
+  if (r.contains("window_steady"))
+    std::printf("  %s\n", r["window_steady"].get<bool>()
+                              ? "the window is steady: every force drifts by less than 5 % of its mean or 20 N"
+                              : "the window is NOT steady for the forces marked: their means are not a steady state");
   if (performance.contains("coupling_window_s"))
     std::printf("coupling window %.3g s, %d tyre sub-steps, active particles %.0f %%, wall time %.0f s\n",
                 performance["coupling_window_s"].get<double>(), performance.value("tyre_substeps", 1),

@@ -1,6 +1,9 @@
 // The steady means of a coupled run; see force_window.hpp.
 #include "coupler/force_window.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -38,9 +41,10 @@ void add_drift(const std::deque<ForceRow>& rows, double window, double from, Win
   long n1 = 0, n2 = 0;
   for (const auto& r : rows) {
     if (window > 0 && r.time_s < from) continue;
-    const double v[WindowDrift::kCount] = {r.d.traction_force_N,           r.d.motion_resistance_N,
-                                           r.d.groove_force_N,             r.d.rolling_resistance_force_N,
-                                           r.d.drawbar_pull_N,             r.d.sinkage_m};
+    const double v[WindowDrift::kCount] = {
+        r.d.traction_force_N,           r.d.motion_resistance_N,   r.d.groove_force_N,
+        r.d.rolling_resistance_force_N, r.d.drawbar_pull_N,        r.d.sinkage_m,
+        r.d.vertical_pressure_force_N,  r.rim_longitudinal_force_N};
     double* half = r.time_s < mid ? first : second;
     for (int k = 0; k < WindowDrift::kCount; ++k) half[k] += v[k];
     ++(r.time_s < mid ? n1 : n2);
@@ -52,8 +56,13 @@ void add_drift(const std::deque<ForceRow>& rows, double window, double from, Win
 }  // namespace
 
 const std::array<const char*, WindowDrift::kCount> WindowDrift::names = {
-    "traction_force_N", "motion_resistance_N", "groove_force_N", "rolling_resistance_force_N",
-    "drawbar_pull_N",   "sinkage_m"};
+    "traction_force_N",           "motion_resistance_N",     "groove_force_N",
+    "rolling_resistance_force_N", "drawbar_pull_N",          "sinkage_m",
+    "vertical_pressure_force_N",  "rim_longitudinal_force_N"};
+
+bool steady_force(double mean_N, double drift_N) {
+  return std::fabs(drift_N) <= std::max(kSteadyDriftShare * std::fabs(mean_N), kSteadyDriftFloor_N);
+}
 
 void ForceWindow::add(const ForceRow& row) {
   rows_.push_back(row);
@@ -144,9 +153,17 @@ void put_window_results(const ForceWindow& window, nlohmann::json& results) {
       {"contact_area_m2", m.mean.contact_area_m2}};
   for (const auto& [name, value] : means) results[name] = value;
   if (m.has_drift) {
-    nlohmann::json drift;
-    for (int k = 0; k < WindowDrift::kCount; ++k) drift[WindowDrift::names[k]] = m.drift.second_less_first[k];
+    nlohmann::json drift, unsteady = nlohmann::json::array();
+    for (int k = 0; k < WindowDrift::kCount; ++k) {
+      const char* name = WindowDrift::names[k];
+      const double d = m.drift.second_less_first[k];
+      drift[name] = d;
+      // Every force of the window must be steady; the sinkage's drift is reported, not judged.
+      if (std::string(name) != "sinkage_m" && !steady_force(results[name].get<double>(), d)) unsteady.push_back(name);
+    }
     results["window_drift"] = drift;
+    results["window_steady"] = unsteady.empty();
+    results["unsteady_forces"] = unsteady;
   }
   if (!window.rows().empty()) {
     results["final_contact_area_m2"] = window.rows().back().d.contact_area_m2;

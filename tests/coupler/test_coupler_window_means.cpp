@@ -6,6 +6,7 @@
 // the count, the order the recorded runs' results depend on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "cosim/checkpoint.hpp"
@@ -93,6 +94,37 @@ TEST(CouplerWindowMeans, ResultsOfAWindowAndOfNoRow) {
   EXPECT_FALSE(none.contains("averaging_window_start_s"));
   EXPECT_FALSE(none.contains("window_drift"));
   EXPECT_FALSE(none.contains("final_sinkage_m"));
+}
+
+// The acceptance rule of a steady window: drift within 5 % of the mean or 20 N,
+// whichever is larger; on both sides of each bound.
+TEST(CouplerWindowMeans, AForceIsSteadyWhenItsDriftIsWithinFivePercentOrTwentyNewtons) {
+  EXPECT_TRUE(coupler::steady_force(1000.0, 50.0));  // 5 % of 1000 N
+  EXPECT_FALSE(coupler::steady_force(1000.0, 50.5));
+  EXPECT_TRUE(coupler::steady_force(-1000.0, -49.0));  // the size of the mean, either sign
+  EXPECT_TRUE(coupler::steady_force(100.0, 20.0));     // the 20 N floor above 5 % of 100 N
+  EXPECT_FALSE(coupler::steady_force(100.0, -20.5));
+  EXPECT_TRUE(coupler::steady_force(0.0, 0.0));
+}
+
+// five_rows(1.0): traction 13/3 N drifts by 2 N (steady by the floor); with the
+// forces scaled by 100 the traction (433 N) drifts by 200 N and every force
+// with it, and the run names them; the sinkage is never judged.
+TEST(CouplerWindowMeans, TheResultsNameTheForcesWhoseWindowIsNotSteady) {
+  nlohmann::json small;
+  coupler::put_window_results(five_rows(1.0), small);
+  EXPECT_TRUE(small["window_steady"].get<bool>());
+  EXPECT_TRUE(small["unsteady_forces"].empty());
+  coupler::ForceWindow large(1.0);
+  const double f[5] = {1, 2, 3, 4, 6};
+  for (int i = 0; i < 5; ++i) large.add(row(0.5 * i, 100 * f[i]));
+  nlohmann::json results;
+  coupler::put_window_results(large, results);
+  EXPECT_FALSE(results["window_steady"].get<bool>());
+  const auto& unsteady = results["unsteady_forces"];
+  EXPECT_NE(std::find(unsteady.begin(), unsteady.end(), "traction_force_N"), unsteady.end());
+  EXPECT_NE(std::find(unsteady.begin(), unsteady.end(), "rim_longitudinal_force_N"), unsteady.end());
+  EXPECT_EQ(std::find(unsteady.begin(), unsteady.end(), "sinkage_m"), unsteady.end());
 }
 
 TEST(CouplerWindowMeans, RowsGoThroughACheckpointAsNamedColumns) {

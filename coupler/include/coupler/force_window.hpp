@@ -49,10 +49,18 @@ class ForceWindow {
 // Each mean over its window's second half less that over its first half: a
 // steady state gives the noise only, a transient a trend.
 struct WindowDrift {
-  static constexpr int kCount = 6;
-  static const std::array<const char*, kCount> names;  // traction_force_N ... sinkage_m
+  static constexpr int kCount = 8;
+  // traction_force_N ... sinkage_m, vertical_pressure_force_N, rim_longitudinal_force_N
+  static const std::array<const char*, kCount> names;
   std::array<double, kCount> second_less_first{};
 };
+
+// A force's mean over the window is a steady-state answer when its drift is
+// within 5 % of the mean or 20 N, whichever is larger (the floor: a force near
+// zero, where 5 % is below the noise of the exchange's force sum). A run whose
+// window is not steady says which forces were not (results "unsteady_forces").
+constexpr double kSteadyDriftShare = 0.05, kSteadyDriftFloor_N = 20.0;
+bool steady_force(double mean_N, double drift_N);
 
 struct WindowMeans {
   double window_s = 0.0;
