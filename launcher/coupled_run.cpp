@@ -1,4 +1,5 @@
 #include "coupled_run.hpp"
+#include "run_report.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -54,46 +55,6 @@ std::string hex(std::uint64_t v) {
   char b[32];
   std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
   return b;
-}
-
-// The force decomposition of thesis ch. 2, as a person reads it at the end of a run.
-void print_force_means(const nlohmann::json& r, const nlohmann::json& performance, const nlohmann::json& summary) {
-  if (!r.contains("traction_force_N")) return;
-  std::printf("\nForce decomposition (thesis ch. 2), means over the last %.3g s:\n", r.value("averaging_window_s", 0.0));
-  const std::pair<const char*, const char*> rows[] = {
-      {"traction_force_N", "traction F3"},
-      {"motion_resistance_N", "motion resistance F1"},
-      {"groove_force_N", "groove force F2"},
-      {"rolling_resistance_force_N", "rolling-resistance force F5"},
-      {"drawbar_pull_N", "drawbar pull F2 + F3 - F1 - F5"},
-      {"rim_longitudinal_force_N", "tyre on the rim, along x"},
-      {"net_longitudinal_pressure_force_N", "net longitudinal pressure -F1 + F2"},
-      {"vertical_pressure_force_N", "vertical pressure force F4"}};
-  // A force whose mean still moves across the window (coupler: drift above 5 % or 20 N) is marked.
-  auto unsteady = [&](const char* key) {
-    if (!r.contains("unsteady_forces")) return false;
-    for (const auto& name : r["unsteady_forces"])
-      if (name == key) return true;
-    return false;
-  };
-  for (const auto& [key, label] : rows) {
-    if (!r.contains(key)) continue;
-    std::printf("  %-38s %10.1f N", label, r[key].get<double>());
-    if (unsteady(key))
-      std::printf("   not steady: %+.0f N from the window's first half to its second",
-                  r["window_drift"][key].get<double>());
-    std::printf("\n");
-  }
-  if (r.contains("sinkage_m")) std::printf("  %-38s %10.1f mm\n", "sinkage", 1e3 * r["sinkage_m"].get<double>());
-  if (r.contains("contact_area_m2")) std::printf("  %-38s %10.4f m^2\n", "contact area", r["contact_area_m2"].get<double>());
-  if (r.contains("window_steady"))
-    std::printf("  %s\n", r["window_steady"].get<bool>()
-                              ? "the window is steady: every force drifts by less than 5 % of its mean or 20 N"
-                              : "the window is NOT steady for the forces marked: their means are not a steady state");
-  if (performance.contains("coupling_window_s"))
-    std::printf("coupling window %.3g s, %d tyre sub-steps, active particles %.0f %%, wall time %.0f s\n",
-                performance["coupling_window_s"].get<double>(), performance.value("tyre_substeps", 1),
-                100.0 * performance.value("active_particle_share", 1.0), summary.value("wall_time_s", 0.0));
 }
 
 }  // namespace
@@ -368,9 +329,7 @@ int write_run_summary(const RunRequest& request, const LoadedScene& scene, const
     summary["comparison"] = compare_with_references(scene.message.references(), results_json);
   write_json(launch.out + "/summary.json", summary);
   if (table.code == 0) {
-    std::printf("%s\n", results_json.dump(2).c_str());
-    print_force_means(results_json, performance, summary);
-    std::printf("%s", reference_lines(summary.value("comparison", nlohmann::json())).c_str());
+    print_run_report({results_json, performance, summary, own.tyre, own.terrain, launch.out + "/summary.json"});
   }
   return table.code;
 }
