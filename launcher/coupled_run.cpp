@@ -168,9 +168,16 @@ std::vector<ChildResult> run_attempt(const RunRequest& request, const LoadedScen
   std::error_code ignored;
   for (const auto& p : coupled_processes)
     std::filesystem::remove(launch.out + "/" + p.role + "/summary.json", ignored);
+  // Each process's results (its stdout) go to its folder, beside its summary.json; its
+  // progress and messages (stderr) stay on the terminal. The run's report is printed once, at the end.
   std::vector<ChildSpec> children;
-  for (const auto& [role, program] : coupled_processes)
-    children.push_back({program, launch.bin + "/" + program, process_args(request, launch, role, run_id, from_exchange)});
+  for (const auto& [role, program] : coupled_processes) {
+    std::filesystem::create_directories(launch.out + "/" + role);
+    children.push_back({program,
+                        launch.bin + "/" + program,
+                        process_args(request, launch, role, run_id, from_exchange),
+                        {launch.out + "/" + role + "/results.txt", ""}});
+  }
   return run_children(children, 10.0);
 }
 

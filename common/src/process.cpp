@@ -147,7 +147,7 @@ std::vector<ChildResult> run_children(const std::vector<ChildSpec>& children, do
   for (std::size_t c = 0; c < children.size(); ++c) {
     results[c].name = children[c].name;
     try {
-      pids[c] = start_child(children[c].program, children[c].args);
+      pids[c] = start_child(children[c].program, children[c].args, children[c].output);
     } catch (const Error&) {
       for (std::size_t k = 0; k < c; ++k) kill(pids[k], SIGTERM);
       for (std::size_t k = 0; k < c; ++k) waitpid(pids[k], nullptr, 0);

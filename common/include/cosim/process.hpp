@@ -47,6 +47,7 @@ struct ChildSpec {
   std::string name;  // for messages ("tyre_fe")
   std::string program;
   std::vector<std::string> args;
+  ChildOutput output = {};  // default: the parent's
 };
 struct ChildResult {
   std::string name;
