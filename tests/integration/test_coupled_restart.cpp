@@ -34,7 +34,7 @@ using test_support::read_file;
 std::vector<std::string> run_args(const std::string& out, int domain) {
   return {"run", test_support::scene_path("tyre_torque_snow"), "--out", out, "--quiet", "--no-vtk",
           "--domain", std::to_string(domain),
-          "--set", "tyre.stages.loading_s=0.02", "--set", "tyre.stages.rolling_s=0.02",
+          "--set", "tyre.stages.loading_rest_tolerance=0", "--set", "tyre.stages.loading_s=0.02", "--set", "tyre.stages.rolling_s=0.02",
           "--set", "tyre.stages.average_last_s=0.01", "--set", "coupling.average_last_s=0.01",
           "--set", "output.checkpoint_interval_s=0.01"};
 }

@@ -248,7 +248,7 @@ TEST(SecurityFiles, AMissingFileIsNamed) {
 // run's forces are the same on either vendor (docs/coupling.md).
 std::vector<std::string> torque_run(const std::string& out, int domain, const std::string& vendors) {
   return {"run", scene_path("tyre_torque_snow"), "--out", out, "--quiet", "--no-vtk", "--domain",
-          std::to_string(domain), "--dds", vendors, "--set", "tyre.stages.loading_s=0.02",
+          std::to_string(domain), "--dds", vendors, "--set", "tyre.stages.loading_rest_tolerance=0", "--set", "tyre.stages.loading_s=0.02",
           "--set", "tyre.stages.rolling_s=0.005", "--set", "tyre.stages.average_last_s=0.0025",
           "--set", "coupling.average_last_s=0.0025"};
 }
