@@ -65,6 +65,12 @@ PointShape point_shape(const std::array<double, 4>& r, const std::array<double, 
   return s;
 }
 
+// The integration weight's radius (2 pi r dA per 2 pi: r) and a hoop term
+// value / r (the hoop strain u_r / r, its operator N_a / r); in plane strain
+// the weight is dA and there is no hoop term.
+double radius_weight(const Mesh& m, double r) { return m.geometry == Geometry::plane_strain ? 1.0 : r; }
+double hoop(const Mesh& m, double value, double r) { return m.geometry == Geometry::plane_strain ? 0.0 : value / r; }
+
 void check_lines(const std::vector<double>& lines, const char* name, double lowest) {
   if (lines.size() < 2) throw cosim::Error(std::string("axisymmetric mesh: ") + name + " needs at least two lines");
   if (!(lines[0] >= lowest)) throw cosim::Error(std::string("axisymmetric mesh: ") + name + " starts below its lowest value");
@@ -77,7 +83,7 @@ void check_lines(const std::vector<double>& lines, const char* name, double lowe
 }  // namespace
 
 Mesh make_mesh(const std::vector<double>& r_lines, const std::vector<double>& z_lines, double density,
-               const MdpcParameters& params) {
+               const MdpcParameters& params, Geometry geometry) {
   check_lines(r_lines, "r_lines", 0.0);
   check_lines(z_lines, "z_lines", -1e300);
   if (!(density > 0.0)) throw cosim::Error("axisymmetric mesh: density must be positive");
@@ -85,6 +91,7 @@ Mesh make_mesh(const std::vector<double>& r_lines, const std::vector<double>& z_
   m.nodes_r = static_cast<int>(r_lines.size());
   m.nodes_z = static_cast<int>(z_lines.size());
   m.density_kg_per_m3 = density;
+  m.geometry = geometry;
   const auto n = static_cast<std::size_t>(m.nodes());
   m.r_m.resize(n), m.z_m.resize(n);
   for (int j = 0; j < m.nodes_z; ++j)
@@ -98,7 +105,7 @@ Mesh make_mesh(const std::vector<double>& r_lines, const std::vector<double>& z_
     const auto [nodes, r, z] = corners(m, e);
     for (int g = 0; g < 4; ++g) {
       const PointShape s = point_shape(r, z, g);
-      for (int a = 0; a < 4; ++a) m.mass_kg_per_rad[nodes[a]] += density * s.N[a] * s.r * s.det;
+      for (int a = 0; a < 4; ++a) m.mass_kg_per_rad[nodes[a]] += density * s.N[a] * radius_weight(m, s.r) * s.det;
     }
   }
   return m;
@@ -128,10 +135,10 @@ ElementPassResult element_pass(Mesh& m, const MdpcParameters& params, double dt,
     std::array<double, 4> bbar_r{}, bbar_z{};
     for (int g = 0; g < 4; ++g) {
       s[g] = point_shape(r, z, g);
-      weight[g] = s[g].r * s[g].det;
+      weight[g] = radius_weight(m, s[g].r) * s[g].det;
       volume += weight[g], area += s[g].det;
       for (int a = 0; a < 4; ++a) {
-        bbar_r[a] += weight[g] * (s[g].dN_dr[a] + s[g].N[a] / s[g].r);
+        bbar_r[a] += weight[g] * (s[g].dN_dr[a] + hoop(m, s[g].N[a], s[g].r));
         bbar_z[a] += weight[g] * s[g].dN_dz[a];
       }
     }
@@ -156,7 +163,7 @@ ElementPassResult element_pass(Mesh& m, const MdpcParameters& params, double dt,
           vr_point += p.N[a] * vr[a];
         }
         Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
-        D(0, 0) = drr, D(1, 1) = dzz, D(2, 2) = vr_point / p.r;
+        D(0, 0) = drr, D(1, 1) = dzz, D(2, 2) = hoop(m, vr_point, p.r);
         D(0, 1) = D(1, 0) = 0.5 * (dvr_dz + dvz_dr);
         D.diagonal().array() += (mean_dilatation - D.trace()) / 3.0;  // B-bar
         Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
@@ -168,9 +175,9 @@ ElementPassResult element_pass(Mesh& m, const MdpcParameters& params, double dt,
       // f_a = -w_g B_bar_a^T sigma, with B_bar = B + (b_bar - b) (x) m / 3.
       const double mean_stress = sigma.trace() / 3.0;
       for (int a = 0; a < 4; ++a) {
-        const double b_r = p.dN_dr[a] + p.N[a] / p.r, b_z = p.dN_dz[a];
+        const double b_r = p.dN_dr[a] + hoop(m, p.N[a], p.r), b_z = p.dN_dz[a];
         f_r[nodes[a]] -= weight[g] * (p.dN_dr[a] * sigma(0, 0) + p.dN_dz[a] * sigma(0, 1) +
-                                      p.N[a] / p.r * sigma(2, 2) + (bbar_r[a] - b_r) * mean_stress);
+                                      hoop(m, p.N[a], p.r) * sigma(2, 2) + (bbar_r[a] - b_r) * mean_stress);
         f_z[nodes[a]] -= weight[g] * (p.dN_dr[a] * sigma(0, 1) + p.dN_dz[a] * sigma(1, 1) +
                                       (bbar_z[a] - b_z) * mean_stress);
       }
@@ -228,7 +235,7 @@ double elastic_energy_J_per_rad(const Mesh& m, const MdpcParameters& params) {
       const double p = -sigma.trace() / 3.0;
       const Eigen::Matrix3d dev = sigma + p * Eigen::Matrix3d::Identity();
       const double q2 = 1.5 * dev.squaredNorm();
-      sum += (p * p / (2.0 * K) + q2 / (6.0 * G)) * s.r * s.det;
+      sum += (p * p / (2.0 * K) + q2 / (6.0 * G)) * radius_weight(m, s.r) * s.det;
     }
   }
   return sum;

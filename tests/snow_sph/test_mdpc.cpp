@@ -516,7 +516,7 @@ TEST(Mdpc, BadParametersThrow) {
   expect_throw("youngs_modulus_Pa", [](MdpcParameters& m) { m.youngs_modulus_Pa = 0.0; });
   expect_throw("youngs_modulus_Pa", [](MdpcParameters& m) { m.youngs_modulus_Pa = NAN; });
   expect_throw("cohesion_Pa", [](MdpcParameters& m) { m.cohesion_Pa = -1.0; });
-  expect_throw("friction_angle_rad", [](MdpcParameters& m) { m.friction_angle_rad = 0.0; });
+  expect_throw("friction_angle_rad", [](MdpcParameters& m) { m.friction_angle_rad = -0.01; });
   expect_throw("friction_angle_rad", [](MdpcParameters& m) { m.friction_angle_rad = 22.5; });  // degrees
   expect_throw("cap_eccentricity", [](MdpcParameters& m) { m.cap_eccentricity = 0.0; });
   expect_throw("transition_alpha", [](MdpcParameters& m) { m.transition_alpha = -0.01; });
@@ -532,6 +532,34 @@ TEST(Mdpc, BadParametersThrow) {
   });
   expect_throw("initial_cap_volumetric_plastic_strain",
                [](MdpcParameters& m) { m.initial_cap_volumetric_plastic_strain = INFINITY; });
+}
+
+// beta = 0: the von Mises limit (the bearing-capacity checks' Tresca-like
+// material). Plane-strain simple shear (only the 0-2 rate; the 1 axis zero) of
+// an elastic-perfectly plastic Mises solid: tau = G gamma up to the yield
+// stress tau_y = d / sqrt(3) (q = sqrt(3) tau in pure shear), then held there
+// with no volume change, whatever the pressure the state carries. Closed form
+// independent of the return mapping; round-off tolerance.
+TEST(Mdpc, ZeroFrictionAngleIsVonMises) {
+  MdpcParameters m;
+  m.youngs_modulus_Pa = 10e6, m.poisson_ratio = 0.3, m.cohesion_Pa = 17000.0, m.friction_angle_rad = 0.0;
+  m.cap_eccentricity = 0.5, m.hardening_pressure_Pa = {1e12, 2e12}, m.hardening_volumetric_plastic_strain = {0.0, 1.0};
+  snow_sph::check_parameters(m);
+  const double G = m.shear_modulus_Pa(), tau_y = m.cohesion_Pa / std::sqrt(3.0);
+  for (double pressure : {0.0, 50e3, -5e3}) {
+    Eigen::Matrix3d stress = -pressure * Eigen::Matrix3d::Identity();
+    double eps = 0.0, gamma = 0.0;
+    for (int k = 0; k < 40; ++k) {
+      Eigen::Matrix3d d = Eigen::Matrix3d::Zero();
+      d(0, 2) = d(2, 0) = 0.5 * 1e-4;  // engineering shear increment 1e-4
+      gamma += 1e-4;
+      const auto step = snow_sph::mdpc_update(m, d, stress, eps);
+      EXPECT_NEAR(stress(0, 2), std::min(G * gamma, tau_y), 1e-9 * tau_y) << "p " << pressure << " step " << k;
+      EXPECT_NEAR(-stress.trace() / 3.0, pressure, 1e-9 * tau_y);
+      EXPECT_EQ(eps, 0.0);
+      EXPECT_EQ(step.surface, G * gamma > tau_y * (1 + 1e-12) ? 1 : 0);
+    }
+  }
 }
 
 // Drained triaxial compression (sigma_2 = sigma_3 held, axial strain increased)

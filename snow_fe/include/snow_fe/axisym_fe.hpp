@@ -20,6 +20,14 @@
 // Stress components are stored in a 3 x 3 tensor in the basis (r, z, theta):
 // (0,0) = sigma_rr, (1,1) = sigma_zz, (2,2) = sigma_thetatheta, (0,1) = sigma_rz.
 // Forces and masses are per radian of the revolved body.
+//
+// The same element in plane strain (Geometry::plane_strain; the strip footing
+// of strip_fe.hpp): r reads x, the hoop terms N_a / r are dropped and the
+// out-of-plane rate of deformation is zero (Zienkiewicz & Taylor, The Finite
+// Element Method, vol. 1, 6th ed., ch. 6: the axisymmetric element is the
+// plane one with the weight 2 pi r and the hoop strain u_r / r added). The
+// component (2,2) is then sigma_yy, out of plane, and "per radian" reads
+// "per metre" of the out-of-plane length.
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +36,9 @@
 #include "snow_sph/mdpc.hpp"
 
 namespace snow_fe::axisym {
+
+// Axisymmetric (r, z) or plane strain (x, z); see the header comment.
+enum class Geometry { axisymmetric, plane_strain };
 
 // A structured mesh of (r_lines - 1) x (z_lines - 1) quads. Node (i, j) sits at
 // (r_lines[i], z_lines[j]) in the reference state; its index is j * nodes_r + i.
@@ -41,6 +52,7 @@ struct Mesh {
   std::vector<Eigen::Matrix3d> stress_Pa;
   std::vector<double> eps_vol_pl;
   double density_kg_per_m3 = 0.0;
+  Geometry geometry = Geometry::axisymmetric;
 
   int node(int i, int j) const { return j * nodes_r + i; }
   int elements_r() const { return nodes_r - 1; }
@@ -52,7 +64,8 @@ struct Mesh {
 // Throws cosim::Error otherwise. Stresses start at zero, eps_vol_pl at
 // params.initial_cap_volumetric_plastic_strain.
 Mesh make_mesh(const std::vector<double>& r_lines_m, const std::vector<double>& z_lines_m,
-               double density_kg_per_m3, const snow_sph::MdpcParameters& params);
+               double density_kg_per_m3, const snow_sph::MdpcParameters& params,
+               Geometry geometry = Geometry::axisymmetric);
 
 // Gauss point positions (reference) of element e, for initial stress fields.
 Eigen::Vector2d gauss_point_position(const Mesh& mesh, int element, int point);

@@ -44,7 +44,7 @@ struct MdpcParameters {
 
 // Throws std::invalid_argument with a message naming the offending parameter
 // (K != 1, tables empty/unsorted/of unequal length, nu outside [0, 0.5), E <= 0,
-// beta outside (0, pi/2), R <= 0, d < 0, alpha outside [0, 1) or too large for
+// beta outside [0, pi/2), R <= 0, d < 0, alpha outside [0, 1) or too large for
 // beta, non-finite values, a cap whose apex q = d + pa tan beta is not positive).
 void check_parameters(const MdpcParameters& params);
 
