@@ -39,7 +39,10 @@ fe::Mesh make_strip_mesh(const StripBearingSetup& s, std::vector<int>& footing) 
   append_lines(x_lines, half_width, s.layer_half_length_m, s.element_size_m);
   append_lines(z_lines, 0.0, s.layer_depth_m, s.element_size_m);
   fe::Mesh mesh = fe::make_mesh(x_lines, z_lines, s.density_kg_per_m3, s.snow, fe::Geometry::plane_strain);
-  for (int j = 0; j < mesh.nodes_z; ++j) mesh.hold_r[mesh.node(0, j)] = mesh.hold_r[mesh.node(mesh.nodes_r - 1, j)] = 1;
+  for (int j = 0; j < mesh.nodes_z; ++j) {
+    mesh.hold_r[mesh.node(0, j)] = 1;
+    if (s.confined_end) mesh.hold_r[mesh.node(mesh.nodes_r - 1, j)] = 1;
+  }
   for (int i = 0; i < mesh.nodes_r; ++i) {
     mesh.hold_z[mesh.node(i, 0)] = 1;
     if (s.rough_base) mesh.hold_r[mesh.node(i, 0)] = 1;
@@ -96,14 +99,12 @@ StripBearingResult run_strip_bearing(const StripBearingSetup& s, int outputs) {
   return result;
 }
 
-double limit_pressure_Pa(const std::vector<double>& d, const std::vector<double>& p) {
-  if (d.size() != p.size() || d.size() < 4) throw cosim::Error("strip bearing: too few output points");
-  const double from = 0.5 * d.back();
-  double n = 0, sd = 0, sp = 0, sdd = 0, sdp = 0;
-  for (std::size_t k = 0; k < d.size(); ++k)
-    if (d[k] >= from) n += 1, sd += d[k], sp += p[k], sdd += d[k] * d[k], sdp += d[k] * p[k];
-  const double slope = (n * sdp - sd * sp) / (n * sdd - sd * sd);
-  return (sp - slope * sd) / n;
+double limit_pressure_Pa(const std::vector<double>& d, const std::vector<double>& p, double footing_width_m) {
+  if (d.size() != p.size() || d.empty() || !(d.front() <= footing_width_m / 40.0))
+    throw cosim::Error("strip bearing: no output point up to a settlement of B/40");
+  double largest = -1e300;
+  for (std::size_t k = 0; k < d.size() && d[k] <= footing_width_m / 40.0; ++k) largest = std::max(largest, p[k]);
+  return largest;
 }
 
 StripBearingSetup strip_setup_from_scene(const cosim::LoadedScene& loaded, bool rough_base, double element_size) {
@@ -121,8 +122,9 @@ StripBearingSetup strip_setup_from_scene(const cosim::LoadedScene& loaded, bool 
   s.snow = material.mdpc;
   s.density_kg_per_m3 = material.density0;
   s.footing_width_m = 2.0 * (body.initial_bottom_centre_m().x() + body.radius_m());
-  s.layer_depth_m = sph.container().max().z() - sph.container().min().z();
-  s.layer_half_length_m = sph.container().max().x() - sph.container().min().x();
+  const auto& layer = sph.blocks(0).region();
+  s.layer_depth_m = layer.max().z() - layer.min().z();
+  s.layer_half_length_m = layer.max().x() - layer.min().x();
   s.element_size_m = element_size;
   s.rough_base = rough_base;
   s.footing_speed_m_per_s = -body.prescribed_velocity_z_m_per_s();

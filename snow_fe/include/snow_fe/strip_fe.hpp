@@ -31,6 +31,10 @@ struct StripBearingSetup {
   double layer_half_length_m = 0.0;  // L, from the centre line
   double element_size_m = 0.0;    // target; x = B/2 is always a node line
   bool rough_base = true;         // fixed base; false: a roller
+  // The layer's end x = L: a roller (confined, as a box's wall) or free (a
+  // layer that may spread: on a smooth base its outer part then slides away
+  // freely, Hill's opposed-dies problem; docs/validation.md).
+  bool confined_end = true;
   double footing_speed_m_per_s = 0.0;
   double speed_ramp_time_s = 0.0;
   double end_displacement_m = 0.0;
@@ -49,17 +53,18 @@ struct StripBearingResult {
 // Throws cosim::Error for a bad setup or an inverted element.
 StripBearingResult run_strip_bearing(const StripBearingSetup& setup, int outputs = 100);
 
-// The limit pressure of the small-deformation (rigid-plastic) theory from a
-// pressure-displacement curve: the least-squares line through the points of
-// the second half of the displacement (the plastic plateau), evaluated at zero
-// displacement. It removes the plateau's slope, which is geometric (the
-// footing's embedment, the layer's thinning under it) and which the closed
-// forms leave out. The SPH study applies the same rule to its curves
-// (scripts/strip_bearing_study.py).
-double limit_pressure_Pa(const std::vector<double>& displacement_m, const std::vector<double>& pressure_Pa);
+// The limit pressure read from a pressure-settlement curve: the largest
+// pressure up to a settlement of B/40. With E / c = 1000 the elastic settlement
+// at the limit is about q B / E = 0.5 % of B, so the plastic mechanism has
+// formed by B/40, while the layer's thinning and the footing's embedment (which
+// the small-deformation closed forms leave out) are still 2.5 % of B; beyond, a
+// Lagrangian mesh's curve keeps rising with them and a particle layer's may
+// fall. The SPH study applies the same rule (scripts/strip_bearing_study.py).
+double limit_pressure_Pa(const std::vector<double>& displacement_m, const std::vector<double>& pressure_Pa,
+                         double footing_width_m);
 
 // From the SPH strip scene (configs/scenes/strip_bearing.textproto): its
-// snow, the layer (the container's height and x-length), the strip (its
+// snow, the layer (its block's height and x-length), the strip (its
 // width twice the x of the body's rim, its speed), the end displacement
 // (speed x end time). The base is given (the scene's floor is the smooth one);
 // the speed ramps in over a tenth of the run. Throws cosim::Error naming the
