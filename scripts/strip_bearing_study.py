@@ -100,30 +100,31 @@ def closed_forms():
 
 
 def write_plot(out, rows):
-    data = os.path.join(out, "strip_bearing_points.dat")
-    with open(data, "w") as f:
-        for method in ("SPH", "FE"):
-            for base in ("smooth_free", "smooth_confined", "rough"):
-                f.write(f"# {method} {base}\n")
-                for r in rows:
-                    if r["method"] == method and r["base"] == base and r["finest"] == "yes":
-                        f.write(f"{r['H_over_B']} {r['N_c']}\n")
-                f.write("\n\n")
-    png = os.path.join(out, "strip_bearing.png")
-    labels = ["SPH, smooth base, free to spread", "SPH, smooth base, confined", "SPH, rough base",
-              "FE, smooth base, free to spread", "FE, smooth base, confined", "FE, rough base"]
-    plots = [f"'{data}' index {k} using 1:2 with points pt {5 if k < 3 else 7} ps 1.5 lc {k % 3 + 1} title '{t}'"
-             for k, t in enumerate(labels)]
+    """N_c against H/B: the finest run of each method and base as markers, the closed forms as lines."""
+    plots = []
+    for k, (method, base, title) in enumerate([
+            ("SPH", "smooth_free", "SPH, smooth base, free to spread"), ("SPH", "smooth_confined", "SPH, smooth base, confined"),
+            ("SPH", "rough", "SPH, rough base"), ("FE", "smooth_free", "FE, smooth base, free to spread"),
+            ("FE", "smooth_confined", "FE, smooth base, confined"), ("FE", "rough", "FE, rough base")]):
+        points = [r for r in rows if r["method"] == method and r["base"] == base and r["finest"] == "yes"]
+        if not points:
+            continue
+        data = os.path.join(out, f"strip_bearing_{method}_{base}.dat")
+        with open(data, "w") as f:
+            f.writelines(f"{r['H_over_B']} {r['N_c']}\n" for r in points)
+        plots.append(f"'{data}' using 1:2 with points pt {5 if method == 'SPH' else 7} ps 1.6 lc {k % 3 + 1} "
+                     f"title '{title} (finest)'")
     # The closed forms (tests/snow_fe/thin_layer_bearing_factors.csv): 2 + pi, exact on a rough base
     # for H/B >= 0.707 and its lower bound below; 2, exact on a smooth base free to spread at H/B = 0.5
     # and its lower bound at every depth.
     plots.append("5.1416 with lines lw 2 lc 3 dt 2 title 'rough base: 2 + {/Symbol p} (exact for H/B >= 0.71, lower bound below)'")
     plots.append("2.0 with lines lw 2 lc 1 dt 2 title 'smooth base, free: 2 (exact at H/B = 0.5, lower bound elsewhere)'")
+    png = os.path.join(out, "strip_bearing.png")
     script = "\n".join([
-        "set terminal pngcairo size 900,650", f"set output '{png}'",
-        "set title 'Rigid rough strip on a Tresca layer over a rigid base: N_c = q_u / c'",
-        "set xlabel 'H / B'", "set ylabel 'q_u / c'", "set xrange [0.3:1.1]", "set yrange [0:8]", "set key bottom right",
-        "set grid", "plot " + ", \\\n  ".join(plots)])
+        "set terminal pngcairo size 900,700", f"set output '{png}'",
+        "set title 'Rigid rough strip on a Tresca layer over a rigid base: N_c = q_u / c (largest up to B/40)'",
+        "set xlabel 'H / B'", "set ylabel 'q_u / c'", "set xrange [0.3:1.1]", "set yrange [0:10]",
+        "set key top left", "set grid", "plot " + ", \\\n  ".join(plots)])
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
 
 
@@ -135,8 +136,13 @@ def main():
     ap.add_argument("--particles", default="4,6,10", help="SPH particles through H")
     ap.add_argument("--elements", default="10,20", help="FE elements across B")
     ap.add_argument("--bases", default="smooth_free,smooth_confined,rough")
+    ap.add_argument("--replot", action="store_true", help="only redraw the plot from <out>/strip_bearing.csv")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
+    if a.replot:
+        with open(os.path.join(a.out, "strip_bearing.csv")) as f:
+            write_plot(a.out, list(csv.DictReader(f)))
+        return 0
     depths = [float(x) for x in a.depths.split(",")]
     particles = [int(x) for x in a.particles.split(",")]
     elements = [int(x) for x in a.elements.split(",")]

@@ -65,7 +65,7 @@ double fe_bearing_factor(double h_over_b, bool rough_base, bool confined_end, do
 
 // Prandtl's 2 + pi on a rough base at H/B = 1 (the mechanism, 0.707 B deep,
 // fits in the layer: exact). Measured at 10, 20, 40 elements across B: 5.702,
-// 5.543, 5.469 (+10.9, +7.8, +6.4 %). 15 %: a plane-strain defect (a hoop term
+// 5.540, 5.469 (+10.9, +7.7, +6.4 %; docs/validation.md). 15 %: a plane-strain defect (a hoop term
 // left in, or a wrong out-of-plane rate) or a strength read as d instead of
 // d / sqrt(3) moves N_c by 18 % (the circle's 6.05) to 73 %.
 TEST(StripFe, RoughBaseDeepLayerBearsPrandtl) {
@@ -77,7 +77,7 @@ TEST(StripFe, RoughBaseDeepLayerBearsPrandtl) {
 
 // A smooth base and a layer free to spread at H/B = 0.5: exactly 2 (the
 // layer's outer part slides away on the frictionless base for nothing).
-// Measured at 10, 20, 40 elements across B: 2.553, 2.363, 2.258 (+28, +18,
+// Measured at 10, 20, 40 elements across B: 2.544, 2.358, 2.258 (+27, +18,
 // +13 %; 5, 10, 20 elements through H). 25 % at 20 across B: the same layer
 // held by a wall at 3B bears 4.7 (the confined case), a rough base more than 5.
 TEST(StripFe, SmoothBaseFreeLayerBearsTwiceItsStrength) {
