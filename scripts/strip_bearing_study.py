@@ -144,8 +144,8 @@ def main():
             write_plot(a.out, list(csv.DictReader(f)))
         return 0
     depths = [float(x) for x in a.depths.split(",")]
-    particles = [int(x) for x in a.particles.split(",")]
-    elements = [int(x) for x in a.elements.split(",")]
+    particles = [int(x) for x in a.particles.split(",") if x]
+    elements = [int(x) for x in a.elements.split(",") if x]
     rows, notes = [], []
     for base in a.bases.split(","):
         for hb in depths:
