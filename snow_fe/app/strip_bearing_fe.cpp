@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
     const auto r = snow_fe::run_strip_bearing(setup, 100);
     std::ofstream csv(out_file);
     csv << "displacement_m,pressure_Pa\n";
-    for (std::size_t k = 0; k < r.pressure_Pa.size(); ++k) csv << r.displacement_m[k] << ',' << r.pressure_Pa[k] << '\n';
+    for (std::size_t k = 0; k < r.pressure_Pa.size(); ++k)
+      csv << r.displacement_m[k] << ',' << r.pressure_Pa[k] << '\n';
     std::printf("H/B %.3f, %s base, %s end, %g elements across B: limit pressure %.1f Pa, largest %.1f Pa, %ld steps\n",
                 setup.layer_depth_m / setup.footing_width_m, base.c_str(), free_end ? "free" : "confined",
                 elements_per_width, snow_fe::limit_pressure_Pa(r.displacement_m, r.pressure_Pa, setup.footing_width_m),

@@ -74,8 +74,8 @@ StripBearingResult run_strip_bearing(const StripBearingSetup& s, int outputs) {
   double next_output = s.end_displacement_m / outputs;
   while (displacement < s.end_displacement_m) {
     const double dt = fe::stable_time_step(mesh, wave_speed, s.time_step_fraction);
-    const double speed = cosim::ramp(cosim::RampCurve::smootherstep, t + 0.5 * dt, s.speed_ramp_time_s,
-                                     s.footing_speed_m_per_s);
+    const double speed =
+        cosim::ramp(cosim::RampCurve::smootherstep, t + 0.5 * dt, s.speed_ramp_time_s, s.footing_speed_m_per_s);
     for (int k : footing) mesh.v_r[k] = 0.0, mesh.v_z[k] = -speed;
     fe::advance_nodes(mesh, a_x, a_z, result.steps == 0 ? 0.5 * dt : 0.5 * (dt + dt_previous), dt);
     displacement += speed * dt;

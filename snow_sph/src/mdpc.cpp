@@ -231,8 +231,7 @@ void check_parameters(const MdpcParameters& m) {
   // beta = 0 is the pressure-independent limit, von Mises with yield stress d
   // (no tension apex, a deviatoric-only return): the Tresca-like cohesive
   // material of the bearing-capacity checks (docs/validation.md).
-  require(finite(m.friction_angle_rad) && m.friction_angle_rad >= 0.0 &&
-              m.friction_angle_rad < 0.5 * kPi,
+  require(finite(m.friction_angle_rad) && m.friction_angle_rad >= 0.0 && m.friction_angle_rad < 0.5 * kPi,
           "friction_angle_rad (beta) must be in [0, pi/2) radians");
   require(finite(m.cap_eccentricity) && m.cap_eccentricity > 0.0,
           "cap_eccentricity (R) must be finite and > 0");

@@ -63,9 +63,8 @@ struct Mesh {
 // Lines must be strictly increasing, r_lines[0] >= 0, at least two each.
 // Throws cosim::Error otherwise. Stresses start at zero, eps_vol_pl at
 // params.initial_cap_volumetric_plastic_strain.
-Mesh make_mesh(const std::vector<double>& r_lines_m, const std::vector<double>& z_lines_m,
-               double density_kg_per_m3, const snow_sph::MdpcParameters& params,
-               Geometry geometry = Geometry::axisymmetric);
+Mesh make_mesh(const std::vector<double>& r_lines_m, const std::vector<double>& z_lines_m, double density_kg_per_m3,
+               const snow_sph::MdpcParameters& params, Geometry geometry = Geometry::axisymmetric);
 
 // Gauss point positions (reference) of element e, for initial stress fields.
 Eigen::Vector2d gauss_point_position(const Mesh& mesh, int element, int point);

@@ -26,11 +26,11 @@ namespace snow_fe {
 struct StripBearingSetup {
   snow_sph::MdpcParameters snow;
   double density_kg_per_m3 = 0.0;
-  double footing_width_m = 0.0;   // B
-  double layer_depth_m = 0.0;     // H
+  double footing_width_m = 0.0;      // B
+  double layer_depth_m = 0.0;        // H
   double layer_half_length_m = 0.0;  // L, from the centre line
-  double element_size_m = 0.0;    // target; x = B/2 is always a node line
-  bool rough_base = true;         // fixed base; false: a roller
+  double element_size_m = 0.0;       // target; x = B/2 is always a node line
+  bool rough_base = true;            // fixed base; false: a roller
   // The layer's end x = L: a roller (confined, as a box's wall) or free (a
   // layer that may spread: on a smooth base its outer part then slides away
   // freely, Hill's opposed-dies problem; docs/validation.md).
