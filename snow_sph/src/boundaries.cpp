@@ -11,8 +11,9 @@ double coordinate(const Particles& p, int axis, std::size_t i) {
   return axis == 0 ? p.x[i] : axis == 1 ? p.y[i] : p.z[i];
 }
 
-// Sign flips of the stress components under the mirrors of `mask`: a
-// reflection over axis a flips every component with exactly one index a.
+// Sign flips of the velocity and stress components under the mirrors of
+// `mask`: a free-slip reflection over axis a flips every component with
+// exactly one index a.
 struct Flips {
   double vx = 1, vy = 1, vz = 1, sxy = 1, syz = 1, sxz = 1;
 };
@@ -21,6 +22,14 @@ Flips flips_for(const Model& m, std::uint8_t mask) {
   Flips f;
   for (std::size_t k = 0; k < m.planes.size(); ++k) {
     if (!(mask & (1u << k))) continue;
+    if (m.planes[k].contact == WallContactKind::no_slip) {
+      // No slip (Morris, Fox & Zhu 1997): the image moves against its source,
+      // so the velocity interpolates to zero at the wall, and the shear
+      // stress, even in the distance from the wall, is kept: the pair forces
+      // across the wall then carry the shear traction that holds the snow.
+      f.vx = -f.vx, f.vy = -f.vy, f.vz = -f.vz;
+      continue;
+    }
     switch (m.planes[k].axis) {
       case 0: f.vx = -f.vx, f.sxy = -f.sxy, f.sxz = -f.sxz; break;
       case 1: f.vy = -f.vy, f.sxy = -f.sxy, f.syz = -f.syz; break;

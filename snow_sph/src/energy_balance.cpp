@@ -56,6 +56,8 @@ void update_energy(const Model& model, const ActiveDomain& domain, const StepPow
   energy.viscous_dissipation += vp * dt;
   energy.plastic_dissipation += pl;
   energy.external_work += (gw + body_work + bp) * dt;
+  // Zero without a COULOMB wall (ground_friction.cpp leaves the array at 0).
+  for (std::size_t i = 0; i < p.n_real; ++i) energy.ground_friction_dissipation += powers.ground_friction_increment[i];
 }
 
 }  // namespace snow_sph

@@ -114,6 +114,9 @@ void SphRun::summarise_steps(cosim::RunRecord& record, double wall) const {
   summary["dt_s"] = {{"min", windows_ ? dt_min_ : 0.0}, {"mean", windows_ ? dt_sum_ / windows_ : 0.0}, {"max", dt_max_},
                      {"smallest_stability_limit", solver.smallest_limit_dt()}};
   summary["energy"] = energy_json(solver.energy());
+  // Only a COULOMB wall (scene WallContact) dissipates by friction: the frictionless box's summary stays as it was.
+  if (solver.energy().ground_friction_dissipation != 0.0)
+    summary["energy"]["ground_friction_dissipation_J"] = solver.energy().ground_friction_dissipation;
   summary["wall_clamps"] = clamped_;
   summary["neighbour_list_rebuilds"] = solver.rebuilds();
   const double inter = static_cast<double>(solver.interactions());

@@ -118,6 +118,14 @@ void set_settings_and_kernel(const sc::Scene& scene, Model& model) {
   st.skin = 0.1 * model.kernel.support;
 }
 
+WallContactKind wall_contact_kind(sc::WallContact::Kind kind) {
+  switch (kind) {
+    case sc::WallContact::COULOMB: return WallContactKind::coulomb;
+    case sc::WallContact::NO_SLIP: return WallContactKind::no_slip;
+    default: return WallContactKind::frictionless;
+  }
+}
+
 // Walls and symmetry planes: the container's five closed faces (the top is open).
 void add_container_planes(const sc::SphTerrain& sph, Model& model) {
   const sc::Face faces[5] = {sc::X_MIN, sc::X_MAX, sc::Y_MIN, sc::Y_MAX, sc::Z_MIN};
@@ -135,6 +143,11 @@ void add_container_planes(const sc::SphTerrain& sph, Model& model) {
     plane.face = names[f];
     for (int s : sph.symmetry_planes()) plane.symmetry = plane.symmetry || s == faces[f];
     if (plane.symmetry) model.symmetry_factor *= 2.0;
+    const sc::WallContact& contact = plane.axis == 2 ? sph.container().floor() : sph.container().side_walls();
+    if (!plane.symmetry) {
+      plane.contact = wall_contact_kind(contact.kind());
+      plane.friction_coefficient = contact.friction_coefficient();
+    }
     model.planes.push_back(plane);
   }
 }

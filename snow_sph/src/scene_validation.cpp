@@ -34,6 +34,20 @@ void validate_time_and_output(const sc::Scene& scene, const cosim::FieldLocator&
     r.fail(root.child("output").where("vtk_interval_s"), "must be >= 0");
 }
 
+// The snow's contact with a kind of the container's faces: a Coulomb
+// coefficient with COULOMB only, finite and > 0.
+void validate_wall_contact(const sc::WallContact& c, const cosim::FieldLocator& l, cosim::ValidationReport& r) {
+  const double mu = c.friction_coefficient();
+  if (c.kind() == sc::WallContact::COULOMB) {
+    if (!(mu > 0 && std::isfinite(mu)))
+      r.fail(l.where("friction_coefficient"),
+             "COULOMB needs a finite coefficient > 0 (got " + num(mu) + "); FRICTIONLESS is the free-slip box");
+  } else if (mu != 0) {
+    r.fail(l.where("friction_coefficient"), "only kind COULOMB takes a friction coefficient (got " + num(mu) +
+                                                " with kind " + sc::WallContact::Kind_Name(c.kind()) + ")");
+  }
+}
+
 // The smoothing length h of the scene's kernel [m].
 double smoothing_length_m(const sc::SphTerrain& sph) { return sph.smoothing_length_ratio() * sph.particle_spacing_m(); }
 
@@ -54,6 +68,8 @@ void validate_lattice_and_container(const sc::SphTerrain& sph, const cosim::Fiel
     if (!(coordinate(box.max(), a) > coordinate(box.min(), a)))
       r.fail(box_loc.where("max"), std::string("container max must exceed min along ") + "xyz"[a]);
   }
+  validate_wall_contact(box.floor(), box_loc.child("floor"), r);
+  validate_wall_contact(box.side_walls(), box_loc.child("side_walls"), r);
   const double h = smoothing_length_m(sph);
   const double support = (sph.kernel() == sc::QUINTIC ? 3.0 : 2.0) * h;
   const double range = 1.1 * support;
@@ -70,7 +86,7 @@ void validate_lattice_and_container(const sc::SphTerrain& sph, const cosim::Fiel
 }
 
 // A block's region: at least one spacing thick and inside the container.
-void validate_block_region(const sc::ParticleBlock& block, const sc::Box& box, double dx,
+void validate_block_region(const sc::ParticleBlock& block, const sc::Container& box, double dx,
                            const cosim::FieldLocator& rl, cosim::ValidationReport& r) {
   for (int a = 0; a < 3; ++a) {
     const double lo = coordinate(block.region().min(), a), hi = coordinate(block.region().max(), a);
@@ -148,7 +164,7 @@ void validate_blocks(const cosim::LoadedScene& loaded, const cosim::FieldLocator
 
 // A rigid body: its size, mass and drive, a rest criterion only under an
 // applied force, and its axis inside the container.
-void validate_rigid_body(const sc::RigidBody& b, const sc::Box& box, const cosim::FieldLocator& l,
+void validate_rigid_body(const sc::RigidBody& b, const sc::Container& box, const cosim::FieldLocator& l,
                          cosim::ValidationReport& r) {
   if (b.name().empty()) r.fail(l.where("name"), "a body needs a name");
   if (!(b.radius_m() > 0)) r.fail(l.where("radius_m"), "must be > 0");

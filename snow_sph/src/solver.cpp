@@ -40,6 +40,8 @@ StepStats Solver::advance_by(double dt) {
   // Walls and rigid bodies on the particles.
   wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), powers_.wall.data());
   body_contact(m_, dt, body_contact_, energy_);
+  // Last: it opposes every other force on the particles next to a wall.
+  ground_friction(m_, neighbours_.list, rates_, stress_over_rho2_, dt, powers_.ground_friction_increment);
   clock_.step_dt = dt;
   return stats;
 }
@@ -82,6 +84,7 @@ void Solver::prepare() {
   compute_pair_forces(m_, neighbours_.list, flags_, rates_, artificial_stress_, stress_over_rho2_, powers_, domain_);
   wall_repulsion(m_, p.ax.data(), p.ay.data(), p.az.data(), powers_.wall.data());
   body_contact(m_, 1e-30 + stable_dt(), body_contact_, energy_);
+  ground_friction(m_, neighbours_.list, rates_, stress_over_rho2_, stable_dt(), powers_.ground_friction_increment);
 }
 
 void Solver::size_work_arrays(std::size_t n_real, std::size_t n_all) {

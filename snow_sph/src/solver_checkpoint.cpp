@@ -21,11 +21,18 @@ template <class T> using Named = std::vector<std::pair<const char*, T*>>;
 
 template <class E> auto energy_fields(E& e) {
   using D = std::remove_reference_t<decltype((e.kinetic))>;
-  return Named<D>{{"kinetic", &e.kinetic}, {"internal", &e.internal}, {"elastic", &e.elastic},
-                  {"plastic_dissipation", &e.plastic_dissipation}, {"viscous_dissipation", &e.viscous_dissipation},
-                  {"contact_dissipation", &e.contact_dissipation}, {"contact_elastic", &e.contact_elastic},
-                  {"external_work", &e.external_work}, {"deactivated_kinetic", &e.deactivated_kinetic},
-                  {"drained_kinetic", &e.drained_kinetic}, {"initial_total", &e.initial_total}};
+  return Named<D>{{"kinetic", &e.kinetic},
+                  {"internal", &e.internal},
+                  {"elastic", &e.elastic},
+                  {"plastic_dissipation", &e.plastic_dissipation},
+                  {"viscous_dissipation", &e.viscous_dissipation},
+                  {"contact_dissipation", &e.contact_dissipation},
+                  {"contact_elastic", &e.contact_elastic},
+                  {"external_work", &e.external_work},
+                  {"deactivated_kinetic", &e.deactivated_kinetic},
+                  {"drained_kinetic", &e.drained_kinetic},
+                  {"initial_total", &e.initial_total},
+                  {"ground_friction_dissipation", &e.ground_friction_dissipation}};
 }
 
 // The moving state of a rigid body (its geometry and load come from the scene).

@@ -6,7 +6,9 @@
 // planar free-slip wall the mirror image is exact, so walls and symmetry
 // planes are the same operation. Ghost pressure carries the hydrostatic
 // increment rho g . (x_ghost - x), so a fluid at rest is in equilibrium at the
-// floor.
+// floor. A no-slip wall's images reverse the whole velocity and keep the
+// shear stresses (Morris, Fox & Zhu 1997, J. Comput. Phys. 136); a Coulomb
+// wall is a free-slip one plus the friction of ground_friction.hpp.
 #include <vector>
 
 #include "snow_sph/model.hpp"

@@ -35,12 +35,17 @@ struct MaterialModel {
 
 // An axis-aligned mirror plane: a rigid free-slip wall or a symmetry plane.
 // The domain lies on the side given by `inside_sign` (+1: coordinate >= position).
+// A wall's contact with the snow (scene WallContact; ground_friction.hpp).
+enum class WallContactKind { frictionless, coulomb, no_slip };
+
 struct MirrorPlane {
   int axis = 0;
   double position = 0.0;
   int inside_sign = 1;
   bool symmetry = false;
   std::string face;
+  WallContactKind contact = WallContactKind::frictionless;  // a symmetry plane's is frictionless
+  double friction_coefficient = 0.0;                        // with contact == coulomb
 };
 
 // A rigid cylinder moving along z only, in contact with the particles.

@@ -9,6 +9,7 @@
 //   ghost state        ghosts take their sources' new stress (second halo point)
 //   pair forces        a^{n+1} from stress, viscosity, artificial stress
 //   walls, bodies      wall repulsion; rigid-body contact
+//   ground friction    Coulomb friction of the container's COULOMB walls
 // and after the exchange (Solver::finish_step): energy balance, water leaving
 // the flow, active domain.
 // Solid SPH after Libersky et al. (1993) and Gray, Monaghan & Swift (2001);
@@ -74,6 +75,16 @@ void hold_surface_force(Particles& p, const ActiveDomain& domain);
 void move_bodies(Model& m, double time_s, double kick, double dt);
 // Penalty contact of the particles with the rigid cylinders.
 void body_contact(Model& m, double dt, BodyContactWork& work, EnergyBalance& energy);
+
+// --- ground friction (ground_friction.cpp) ---
+// Coulomb friction of the container's COULOMB walls on the particles their
+// images reach, bounded by mu times the images' push (the pair forces' terms,
+// from the list and the stress / rho^2 of the force pass), added to the
+// accelerations after every other force of the step; dissipated_J[i] the work
+// it takes out of particle i over the next kick (dt). Nothing, and no array
+// touched, without a COULOMB wall.
+void ground_friction(Model& m, const NeighbourList& list, const PairRates& rates,
+                     const SymmetricField& stress_over_rho2, double dt, std::vector<double>& dissipated_J);
 
 // --- active domain (active_domain.cpp) ---
 void rebuild_active_lists(const Particles& p, ActiveDomain& domain);

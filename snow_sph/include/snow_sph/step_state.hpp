@@ -25,6 +25,7 @@ struct EnergyBalance {
   double plastic_dissipation = 0.0;
   double viscous_dissipation = 0.0;  // artificial and physical viscosity
   double contact_dissipation = 0.0;  // friction and contact damping
+  double ground_friction_dissipation = 0.0;  // the container walls' Coulomb friction (ground_friction.cpp)
   double contact_elastic = 0.0;      // stored in penalty springs
   double external_work = 0.0;        // gravity, applied loads, prescribed motions,
                                      // the coupled surface, the resting (inactive) terrain
@@ -37,8 +38,8 @@ struct EnergyBalance {
   // Abaqus-style balance: KE + IE + VD + FD + contact - W, relative to the
   // largest of KE, IE, W.
   double total() const {
-    return kinetic + internal + viscous_dissipation + contact_dissipation + contact_elastic +
-           deactivated_kinetic + drained_kinetic - external_work;
+    return kinetic + internal + viscous_dissipation + contact_dissipation + contact_elastic + deactivated_kinetic +
+           drained_kinetic + ground_friction_dissipation - external_work;
   }
   double relative_error() const;
 };
@@ -77,7 +78,10 @@ struct SymmetricField {
 // Per real particle, this step: the powers and increments the energy balance sums.
 struct StepPowers {
   std::vector<double> stress, viscous, plastic_increment, wall;
-  std::vector<std::vector<double>*> all() { return {&stress, &viscous, &plastic_increment, &wall}; }
+  std::vector<double> ground_friction_increment;  // [J] the walls' Coulomb friction (ground_friction.cpp)
+  std::vector<std::vector<double>*> all() {
+    return {&stress, &viscous, &plastic_increment, &wall, &ground_friction_increment};
+  }
 };
 
 // Per real particle: a rigid body's contact force and the energy its contact dissipated.
