@@ -144,6 +144,27 @@ TEST(SceneValidation, CommandLineOverridesAreChecked) {
   EXPECT_EQ(error_of(path, {"sph.kernel=QUINTIC", "sph.particle_spacing_m=0.025"}), "");
 }
 
+// The container's contact with the snow: a Coulomb coefficient only with
+// COULOMB, and there finite and > 0; each problem names its field.
+TEST(SceneValidation, ContainerWallContactNamesTheField) {
+  const auto path = write_scene("wall_contact", kValid);
+  EXPECT_EQ(error_of(path, {"sph.container.floor.kind=COULOMB", "sph.container.floor.friction_coefficient=0.57"}), "");
+  EXPECT_EQ(error_of(path, {"sph.container.side_walls.kind=NO_SLIP"}), "");
+  const std::string zero = error_of(path, {"sph.container.floor.kind=COULOMB"});
+  EXPECT_NE(zero.find("sph.container.floor.friction_coefficient (not set in the file): COULOMB needs a finite "
+                      "coefficient > 0 (got 0)"),
+            std::string::npos)
+      << zero;
+  const std::string negative =
+      error_of(path, {"sph.container.side_walls.kind=COULOMB", "sph.container.side_walls.friction_coefficient=-0.2"});
+  EXPECT_NE(negative.find("sph.container.side_walls.friction_coefficient"), std::string::npos) << negative;
+  const std::string stray = error_of(path, {"sph.container.floor.friction_coefficient=0.3"});
+  EXPECT_NE(stray.find("--set sph.container.floor.friction_coefficient=0.3: only kind COULOMB takes a friction "
+                       "coefficient (got 0.3 with kind FRICTIONLESS)"),
+            std::string::npos)
+      << stray;
+}
+
 // A repeated number is set by index: an entry replaced in place, the next index appended.
 TEST(SceneValidation, RepeatedNumbersAreSetByIndex) {
   const auto path = write_scene("repeated", kValid);
