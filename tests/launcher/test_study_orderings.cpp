@@ -44,7 +44,8 @@ TEST(StudyOrderings, EveryThesisOrderingHasRunsToCompareInTheTorqueStudy) {
   ASSERT_GE(list.size(), 15u);
   const auto study = cosim::load_study(test_support::source_dir() + "/configs/studies/torque_force.textproto");
   const auto cases = cosim::expand_cases(study->message);
-  ASSERT_EQ(cases.size(), 28u);  // 3 treads x 2 snows x 4 torques + 4 at 6000 N
+  // 3 treads x 2 snows x 4 torques + 4 at 6000 N on the frictionless floor, + 2 treads x 2 torques on frozen ground
+  ASSERT_EQ(cases.size(), 32u);
   std::vector<StudyRow> rows;
   nlohmann::json ones;
   for (const char* q : {"sinkage_m", "traction_minus_rrf_N", "rolling_resistance_force_N", "groove_force_N",
