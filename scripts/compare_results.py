@@ -8,12 +8,17 @@ and coupler/ inside, or one program's), or two files. For folders, every CSV
 series and summary.json that REFERENCE holds is compared with NEW's file of
 the same path; for files, the two files.
 
-- A CSV series must be the same text: the first differing row is printed with
-  its line number, both rows and the columns in which they differ.
+- A CSV series must be the same text in every column the reference has: the
+  first differing row is printed with its line number, both rows and the
+  columns in which they differ. Columns the new series adds (a new output) are
+  listed and not compared; a reference column the new series lacks is a
+  difference.
 - A summary.json is compared value by value (numbers to the last bit, as
   nlohmann::json writes them with round-trip precision), leaving out what
   measures the machine instead of the model: wall times, speeds, the revision,
   the output folder, thread counts. The first differing key path is printed.
+  Keys only in the new summary (a new output) are listed and not compared; a
+  key only in the reference is a difference.
 
 Exits 0 if everything compared is identical, 1 at the first difference, 2 on
 bad arguments or a file missing from NEW. Standard library only.
@@ -34,20 +39,40 @@ SKIPPED_KEYS = {
 }
 
 
+def split_row(line):
+    return line.rstrip("\n").split(",")
+
+
 def compare_csv(ref_path, new_path):
     with open(ref_path) as ref, open(new_path) as new:
-        header = None
-        for number, (a, b) in enumerate(zip(ref, new), start=1):
-            if number == 1:
-                header = a.rstrip("\n").split(",")
-            if a != b:
-                ra, rb = a.rstrip("\n").split(","), b.rstrip("\n").split(",")
-                columns = [header[k] if header and k < len(header) else str(k)
+        ref_header, new_header = ref.readline(), new.readline()
+        if ref_header == new_header:
+            # Same columns: the rows as text.
+            keep = None
+            header = split_row(ref_header)
+        else:
+            # The new series adds columns: the reference's columns, by name, must hold the same text.
+            ref_columns, new_columns = split_row(ref_header), split_row(new_header)
+            missing = [c for c in ref_columns if c not in new_columns]
+            if missing or len(set(ref_columns)) != len(ref_columns):
+                print(f"{new_path}:1: lacks the reference's column(s) {', '.join(missing) or '(repeated names)'}")
+                return False
+            keep = [new_columns.index(c) for c in ref_columns]
+            header = ref_columns
+            added = [c for c in new_columns if c not in ref_columns]
+            print(f"{new_path}: {len(added)} new column(s) not compared: {', '.join(added)}")
+        number = 1
+        for number, (a, b) in enumerate(zip(ref, new), start=2):
+            ra, rb = split_row(a), split_row(b)
+            if keep is not None:
+                rb = [rb[k] if k < len(rb) else "" for k in keep]
+            if ra != rb:
+                columns = [header[k] if k < len(header) else str(k)
                            for k in range(max(len(ra), len(rb)))
                            if k >= len(ra) or k >= len(rb) or ra[k] != rb[k]]
                 print(f"{new_path}:{number}: differs from {ref_path}:{number} in {', '.join(columns)}")
-                print(f"  reference: {a.rstrip()}")
-                print(f"  new:       {b.rstrip()}")
+                print(f"  reference: {','.join(ra)}")
+                print(f"  new:       {','.join(rb)}")
                 return False
         rest_ref, rest_new = ref.read(), new.read()
     if rest_ref or rest_new:
@@ -57,14 +82,18 @@ def compare_csv(ref_path, new_path):
     return True
 
 
-def first_json_difference(a, b, path):
+def first_json_difference(a, b, path, added):
+    """The first difference of b from a, or None; keys only in b go to `added`."""
     if isinstance(a, dict) and isinstance(b, dict):
         for key in sorted(set(a) | set(b)):
             if key in SKIPPED_KEYS:
                 continue
-            if key not in a or key not in b:
-                return f"{path}/{key}: only in {'the reference' if key in a else 'the new run'}"
-            found = first_json_difference(a[key], b[key], f"{path}/{key}")
+            if key not in a:
+                added.append(f"{path}/{key}")
+                continue
+            if key not in b:
+                return f"{path}/{key}: only in the reference"
+            found = first_json_difference(a[key], b[key], f"{path}/{key}", added)
             if found:
                 return found
         return None
@@ -72,7 +101,7 @@ def first_json_difference(a, b, path):
         if len(a) != len(b):
             return f"{path}: {len(a)} items in the reference, {len(b)} in the new run"
         for k, (x, y) in enumerate(zip(a, b)):
-            found = first_json_difference(x, y, f"{path}[{k}]")
+            found = first_json_difference(x, y, f"{path}[{k}]", added)
             if found:
                 return found
         return None
@@ -86,7 +115,10 @@ def compare_json(ref_path, new_path):
         ref = json.load(f)
     with open(new_path) as f:
         new = json.load(f)
-    found = first_json_difference(ref, new, "")
+    added = []
+    found = first_json_difference(ref, new, "", added)
+    if added:
+        print(f"{new_path}: {len(added)} new key(s) not compared: {', '.join(added)}")
     if found:
         print(f"{new_path}: {found}")
         return False
