@@ -160,6 +160,32 @@ bool plot_csv(const std::string& csv, const std::string& png, int x_column,
   return plot_png(png, o, curves);
 }
 
+bool plot_csv_stacked(const std::string& csv, const std::string& png, int x_column,
+                      const std::vector<PlotSeries>& stacked, const std::vector<PlotSeries>& lines,
+                      const std::string& title, const std::string& x_label, const std::string& y_label) {
+  // Sixteen colours told apart in print and by most colour-blind readers
+  // (Tableau 10, then six darker tones); a seventeenth term repeats the first.
+  static const char* const kColours[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948",
+                                         "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac", "#1f3b5a", "#8c4a0f",
+                                         "#6b1f22", "#2f5d2a", "#5a3b57", "#4d4d4d"};
+  PlotOptions o;
+  o.title = title, o.x_label = x_label, o.y_label = y_label;
+  o.extra_commands = "set key top left reverse Left opaque box font ',9'\nset autoscale xfix\n";
+  std::vector<PlotCurve> curves;
+  const std::string x = std::to_string(x_column);
+  std::string below = "0";
+  for (std::size_t k = 0; k < stacked.size(); ++k) {
+    const std::string above = (k ? below + "+" : std::string()) + "$" + std::to_string(stacked[k].column);
+    curves.push_back({csv, x + ":(" + below + "):(" + above + ")",
+                      std::string("filledcurves fs solid 0.85 noborder fc rgb '") + kColours[k % 16] + "'",
+                      stacked[k].title});
+    below = above;
+  }
+  for (const auto& l : lines)
+    curves.push_back({csv, x + ":" + std::to_string(l.column), "lines lw 2 dt 2 lc rgb 'black'", l.title});
+  return plot_png(png, o, curves);
+}
+
 bool plot_csv_map(const std::string& csv, const std::string& png, int x_column, int y_column, int value_column,
                   const std::string& title, const std::string& x_label, const std::string& y_label,
                   const std::string& value_label) {

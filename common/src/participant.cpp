@@ -176,6 +176,13 @@ void RunRecord::plot(const std::string& csv_file, const std::string& png_file, i
     summary_["plots"].push_back(png_file);
 }
 
+void RunRecord::plot_stacked(const std::string& csv_file, const std::string& png_file, int x_column,
+                             const std::vector<PlotSeries>& stacked, const std::vector<PlotSeries>& lines,
+                             const std::string& title, const std::string& x_label, const std::string& y_label) {
+  if (plot_csv_stacked(path(csv_file), path(png_file), x_column, stacked, lines, title, x_label, y_label))
+    summary_["plots"].push_back(png_file);
+}
+
 void RunRecord::plot_map(const std::string& csv_file, const std::string& png_file, int x_column, int y_column,
                          int value_column, const std::string& title, const std::string& x_label,
                          const std::string& y_label, const std::string& value_label) {

@@ -108,6 +108,13 @@ bool plot_csv(const std::string& csv, const std::string& png, int x_column,
               const std::vector<PlotSeries>& series, const std::string& title,
               const std::string& x_label, const std::string& y_label,
               const std::string& extra_commands = "");
+// A stacked plot of CSV columns against x_column: each of `stacked` filled, in
+// a colour of its own, between the sum of the columns before it and the sum
+// with it (where a total goes, term by term); `lines` drawn over them. Same
+// rules as plot_csv.
+bool plot_csv_stacked(const std::string& csv, const std::string& png, int x_column,
+                      const std::vector<PlotSeries>& stacked, const std::vector<PlotSeries>& lines,
+                      const std::string& title, const std::string& x_label, const std::string& y_label);
 // A map: points at (x, y) of a CSV coloured by a third column (pressure
 // pictures), equal axis scales. Same rules as plot_csv.
 bool plot_csv_map(const std::string& csv, const std::string& png, int x_column, int y_column, int value_column,

@@ -77,6 +77,10 @@ class RunRecord {
   void plot(const std::string& csv_file, const std::string& png_file, int x_column,
             const std::vector<PlotSeries>& series, const std::string& title, const std::string& x_label,
             const std::string& y_label, const std::string& extra_commands = "");
+  // A stacked plot of CSV columns (cosim::plot_csv_stacked), same rules.
+  void plot_stacked(const std::string& csv_file, const std::string& png_file, int x_column,
+                    const std::vector<PlotSeries>& stacked, const std::vector<PlotSeries>& lines,
+                    const std::string& title, const std::string& x_label, const std::string& y_label);
   // A coloured map of a CSV (cosim::plot_csv_map), same rules.
   void plot_map(const std::string& csv_file, const std::string& png_file, int x_column, int y_column,
                 int value_column, const std::string& title, const std::string& x_label, const std::string& y_label,
