@@ -10,6 +10,7 @@
 #include "cosim/result_references.hpp"
 #include "cosim_coupling/cli.hpp"
 #include "dds_surface_exchange.hpp"
+#include "snow_sph/energy_split.hpp"
 #include "snow_sph/run.hpp"
 #include "snow_sph/scene.hpp"
 
@@ -27,7 +28,9 @@ int run_terrain(const cosim::coupling::ProgramCli& command_line) {
   snow_sph::RunOptions options{command_line.scene.out_dir, command_line.scene.quiet, !command_line.scene.no_vtk};
   command_line.restart.apply_to(options);
   if (!coupling.coupled) {
-    cosim::print_results(snow_sph::run_scene(*scene, options));
+    const nlohmann::json summary = snow_sph::run_scene(*scene, options);
+    cosim::print_results(summary);
+    std::printf("%s", snow_sph::terrain_energy_table(summary.value("energy", nlohmann::json())).c_str());
     return 0;
   }
   if (!cosim::has_fe_body(scene->message))

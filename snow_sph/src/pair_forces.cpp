@@ -55,6 +55,22 @@ struct ParticleForce {
   const double* frozen;
   double* boundary_power;
   double* viscous_power;
+  // The parts of viscous_power: Pi_ij, the quasi-static damping, water's viscosity.
+  double* artificial_viscous_power;
+  double* damping_power;
+  double* water_viscous_power;
+
+  // Particle i's viscous power and its parts [W], from its velocity v, the
+  // artificial viscosity's acceleration a_pi and the viscous acceleration
+  // before the damping a (a - a_pi: water's, exactly 0 without water).
+  void book_viscous_powers(std::size_t i, const double (&v)[3], const double (&a_pi)[3], const double (&a)[3]) const {
+    const double mi = p.mass[i];
+    const double ax = a[0] - damping * v[0], ay = a[1] - damping * v[1], az = a[2] - damping * v[2];
+    viscous_power[i] = -mi * (v[0] * ax + v[1] * ay + v[2] * az);
+    artificial_viscous_power[i] = -mi * (v[0] * a_pi[0] + v[1] * a_pi[1] + v[2] * a_pi[2]);
+    water_viscous_power[i] = -mi * (v[0] * (a[0] - a_pi[0]) + v[1] * (a[1] - a_pi[1]) + v[2] * (a[2] - a_pi[2]));
+    damping_power[i] = mi * damping * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
 
   void operator()(std::size_t i) const {
       const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
@@ -69,13 +85,11 @@ struct ParticleForce {
       const double* pvx = p.vx.data(); const double* pvy = p.vy.data(); const double* pvz = p.vz.data();
       const double* pm = p.mass.data(); const double* prho = p.density.data();
       const double* pc = p.sound_speed.data();
-      const float* pf = rates.pair_f.data();
-      const float* pinv = rates.pair_inv.data();
       const std::uint32_t first = off[i];
       const int n_pairs = static_cast<int>(off[i + 1] - first);
       const std::uint32_t* __restrict nbi = nb + first;
-      const float* __restrict pfi = pf + first;
-      const float* __restrict pinvi = pinv + first;
+      const float* __restrict pfi = rates.pair_f.data() + first;
+      const float* __restrict pinvi = rates.pair_inv.data() + first;
       // Branch-free bodies: pairs beyond the support (list skin) have F = 0 and
       // coincident pairs r = 0, so neither adds anything, and the loops
       // vectorise over neighbours. F and 1/(r^2 + 0.01 h^2) come from the rates pass.
@@ -100,6 +114,7 @@ struct ParticleForce {
           vx_ -= mj * visc * gx, vy_ -= mj * visc * gy, vz_ -= mj * visc * gz;
         }
       }
+      const double avx = vx_, avy = vy_, avz = vz_;  // Pi_ij's part: all the viscous sum holds so far
       if (art) {
         const double rxx_i = rxx[i], ryy_i = ryy[i], rzz_i = rzz[i];
         const double rxy_i = rxy[i], ryz_i = ryz[i], rxz_i = rxz[i];
@@ -147,12 +162,12 @@ struct ParticleForce {
         }
         boundary_power[i] = p.mass[i] * (vxi * bx + vyi * by + vzi * bz);
       }
+      book_viscous_powers(i, {vxi, vyi, vzi}, {avx, avy, avz}, {vx_, vy_, vz_});
       // Quasi-static damping (dynamic relaxation), counted as viscous.
       vx_ -= damping * vxi, vy_ -= damping * vyi, vz_ -= damping * vzi;
       p.ax[i] = fx + vx_ + g[0];
       p.ay[i] = fy + vy_ + g[1];
       p.az[i] = fz + vz_ + g[2];
-      viscous_power[i] = -p.mass[i] * (vxi * vx_ + vyi * vy_ + vzi * vz_);
   }
 };
 
@@ -167,13 +182,39 @@ void forces_pass(Model& m, const NeighbourList& list, const MaterialFlags& flags
   if (art) mirror_artificial_stress(m, R);
   SymmetricField& Q = stress_over_rho2;
   compute_stress_over_rho2(p, Q);
-  const ParticleForce<T> force{p, k, k.h, m.settings.av_alpha, m.settings.av_beta, m.settings.gravity, art,
-                               1.0 / flags.w_dx, list.offsets.data(), list.index.data(), rates,
-                               Q.xx.data(), Q.yy.data(), Q.zz.data(), Q.xy.data(), Q.yz.data(), Q.xz.data(),
-                               flags.any_water, m.settings.damping_per_s,
-                               R.xx.data(), R.yy.data(), R.zz.data(), R.xy.data(), R.yz.data(), R.xz.data(),
-                               flags.water_viscosity.data(), active.on, active.frozen.data(),
-                               active.boundary_power.data(), powers.viscous.data()};
+  const ParticleForce<T> force{p,
+                               k,
+                               k.h,
+                               m.settings.av_alpha,
+                               m.settings.av_beta,
+                               m.settings.gravity,
+                               art,
+                               1.0 / flags.w_dx,
+                               list.offsets.data(),
+                               list.index.data(),
+                               rates,
+                               Q.xx.data(),
+                               Q.yy.data(),
+                               Q.zz.data(),
+                               Q.xy.data(),
+                               Q.yz.data(),
+                               Q.xz.data(),
+                               flags.any_water,
+                               m.settings.damping_per_s,
+                               R.xx.data(),
+                               R.yy.data(),
+                               R.zz.data(),
+                               R.xy.data(),
+                               R.yz.data(),
+                               R.xz.data(),
+                               flags.water_viscosity.data(),
+                               active.on,
+                               active.frozen.data(),
+                               active.boundary_power.data(),
+                               powers.viscous.data(),
+                               powers.artificial_viscous.data(),
+                               powers.damping.data(),
+                               powers.water_viscous.data()};
   for_active(active, p.n_real, "sph.forces", force);
 }
 

@@ -6,6 +6,7 @@
 
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
+#include "snow_sph/energy_split.hpp"
 #include "snow_sph/scene.hpp"
 #include "sph_run.hpp"
 
@@ -77,9 +78,17 @@ void write_rut_csv(const std::string& path, const RutGrid& grid, const RutSurfac
 // is opened when it joins.
 void SphRun::open_series(cosim::RunRecord& record) {
   const Model& model = *model_;
-  energy_csv_ = &record.series("energy.csv", {"time_s", "kinetic_J", "internal_J", "elastic_stored_J",
-                                              "plastic_dissipation_J", "viscous_dissipation_J",
-                                              "contact_dissipation_J", "external_work_J", "energy_relative_error"});
+  energy_columns_ = {"time_s",
+                     "kinetic_J",
+                     "internal_J",
+                     "elastic_stored_J",
+                     "plastic_dissipation_J",
+                     "viscous_dissipation_J",
+                     "contact_dissipation_J",
+                     "external_work_J",
+                     "energy_relative_error"};
+  for (const EnergyValue& v : energy_split(EnergyBalance{})) energy_columns_.push_back(v.key);  // the split's
+  energy_csv_ = &record.series("energy.csv", energy_columns_);
   if (!model.bodies.empty()) {
     std::vector<std::string> cols{"time_s"};
     for (const auto& b : model.bodies)
@@ -135,8 +144,17 @@ void SphRun::record_rows(bool force) {
   if (!force && t + 1e-15 < next_csv_) return;
   next_csv_ = t + csv_interval_;
   const EnergyBalance& e = solver_->energy();
-  energy_csv_->row({t, e.kinetic, e.internal, e.elastic, e.plastic_dissipation, e.viscous_dissipation,
-                    e.contact_dissipation, e.external_work, e.relative_error()});
+  std::vector<double> energy_row{t,
+                                 e.kinetic,
+                                 e.internal,
+                                 e.elastic,
+                                 e.plastic_dissipation,
+                                 e.viscous_dissipation,
+                                 e.contact_dissipation,
+                                 e.external_work,
+                                 e.relative_error()};
+  for (const EnergyValue& v : energy_split(e)) energy_row.push_back(v.value);
+  energy_csv_->row(energy_row);
   if (bodies_csv_) {
     std::vector<double> row{t};
     for (const auto& b : model_->bodies)
@@ -157,12 +175,33 @@ void SphRun::record_rows(bool force) {
   }
 }
 
+// Where the work went over time: the split's terms stacked (those not 0 at
+// the end), the work done on the terrain as a line over them; the gap
+// between the two is the balance.
+void SphRun::plot_energy_split(cosim::RunRecord& record, const std::string& name) {
+  const nlohmann::json energy = record.summary().value("energy", nlohmann::json::object());
+  auto column = [&](const char* key) {
+    const auto at = std::find(energy_columns_.begin(), energy_columns_.end(), key);
+    return static_cast<int>(at - energy_columns_.begin()) + 1;
+  };
+  const cosim::EnergySplit& split = terrain_energy_split();
+  std::vector<cosim::PlotSeries> stacked;
+  for (const cosim::EnergyTerm& t : split.went_to)
+    if (energy.contains(t.key) && energy[t.key].is_number() && energy[t.key].get<double>() != 0.0)
+      stacked.push_back({column(t.key), t.label});
+  if (stacked.empty()) return;
+  record.plot_stacked("energy.csv", "energy_split.png", 1, stacked,
+                      {{column(split.total.key), "work done on the terrain"}},
+                      name + ": where the work done on the terrain went", "time [s]", "energy [J]");
+}
+
 void SphRun::plots(cosim::RunRecord& record) {
   if (!energy_csv_) return;
   const std::string name = scene_.name();
   if (surface_port_ && record.results().contains("rut_depth_m")) plot_rut(record, name, rut_grid_);
   record.plot("energy.csv", "energy.png", 1, {{2, "kinetic"}, {3, "internal"}, {6, "viscous"}, {8, "external work"}},
               name + ": energy", "time [s]", "energy [J]");
+  plot_energy_split(record, name);
   if (bodies_csv_)
     record.plot("bodies.csv", "bodies.png", 1, {{3, model_->bodies[0].name + " displacement"}},
                 name + ": " + model_->bodies[0].name + " displacement", "time [s]", "displacement [m]");

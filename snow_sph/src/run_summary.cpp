@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "cosim/error.hpp"
+#include "snow_sph/energy_split.hpp"
 #include "snow_sph/scene.hpp"
 #include "sph_run.hpp"
 
@@ -18,20 +19,23 @@ const char* kernel_name(KernelType k) {
 }
 
 nlohmann::json energy_json(const EnergyBalance& e) {
-  return {{"kinetic_J", e.kinetic},
-          {"internal_J", e.internal},
-          {"elastic_stored_J", e.elastic},
-          {"plastic_dissipation_J", e.plastic_dissipation},
-          {"viscous_dissipation_J", e.viscous_dissipation},
-          {"contact_dissipation_J", e.contact_dissipation},
-          {"contact_elastic_J", e.contact_elastic},
-          {"external_work_J", e.external_work},
-          {"deactivated_kinetic_J", e.deactivated_kinetic},
-          {"drained_kinetic_J", e.drained_kinetic},
-          {"balance_J", e.total() - e.initial_total},
-          {"relative_error", e.relative_error()},
-          {"note", "energies of the simulated particles and bodies; balance = KE + IE + VD + FD + "
-                   "contact - W (Abaqus ETOTAL), relative to max(KE, IE, VD, W)"}};
+  nlohmann::json j = {{"kinetic_J", e.kinetic},
+                      {"internal_J", e.internal},
+                      {"elastic_stored_J", e.elastic},
+                      {"plastic_dissipation_J", e.plastic_dissipation},
+                      {"viscous_dissipation_J", e.viscous_dissipation},
+                      {"contact_dissipation_J", e.contact_dissipation},
+                      {"contact_elastic_J", e.contact_elastic},
+                      {"external_work_J", e.external_work},
+                      {"deactivated_kinetic_J", e.deactivated_kinetic},
+                      {"drained_kinetic_J", e.drained_kinetic},
+                      {"balance_J", e.total() - e.initial_total},
+                      {"relative_error", e.relative_error()},
+                      {"note",
+                       "energies of the simulated particles and bodies; balance = KE + IE + VD + FD + "
+                       "contact - W (Abaqus ETOTAL), relative to max(KE, IE, VD, W)"}};
+  for (const auto& [key, value] : energy_split(e)) j[key] = value;
+  return j;
 }
 
 nlohmann::json materials_json(const Model& model) {

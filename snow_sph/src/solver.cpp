@@ -22,7 +22,9 @@ StepStats Solver::advance_by(double dt) {
   // Integration: kick v^{n+1/2} (with a held surface force's work) and drift x^{n+1}.
   const KickLengths kick = kick_lengths(clock_.steps, clock_.dt_prev, dt, surface_.held);
   if (surface_.held) {
-    energy_.external_work += held_surface_work(p, domain_, kick);
+    const double work = held_surface_work(p, domain_, kick);
+    energy_.external_work += work;
+    energy_.surface_work_on_particles += work;
     surface_.window_kick += kick.surface;
   }
   kick_drift(p, domain_, kick, dt);
@@ -105,10 +107,18 @@ void Solver::initialise() {
     for (std::size_t i = 0; i < m_.particles.n_real; ++i) m_.particles.moving[i] = m_.particles.active[i];
     rebuild_active_lists(m_.particles, domain_);
   }
+  // Exchange 0's contact, made before this with the particles at t_0, is the
+  // first window's: what it dissipates over that window counts; its springs
+  // hold their energy at t_0, the start of the surface's work.
+  const EnergyBalance contact_at_start = energy_;
   energy_ = EnergyBalance{};
   energy_.contact_elastic = 0.0;
+  energy_.surface_friction = contact_at_start.surface_friction;
+  energy_.surface_damping = contact_at_start.surface_damping;
+  energy_.surface_contact_elastic = energy_.initial_surface_contact_elastic = contact_at_start.surface_contact_elastic;
   update_energy(m_, domain_, powers_, clock_.time, 0.0, energy_);
   energy_.initial_total = energy_.total();
+  energy_.initial_kinetic = energy_.kinetic;
 }
 
 bool Solver::rebuild_if_needed(bool force) {

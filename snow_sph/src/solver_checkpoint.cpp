@@ -32,7 +32,22 @@ template <class E> auto energy_fields(E& e) {
                   {"deactivated_kinetic", &e.deactivated_kinetic},
                   {"drained_kinetic", &e.drained_kinetic},
                   {"initial_total", &e.initial_total},
-                  {"ground_friction_dissipation", &e.ground_friction_dissipation}};
+                  {"ground_friction_dissipation", &e.ground_friction_dissipation},
+                  {"initial_kinetic", &e.initial_kinetic},
+                  {"plastic_cap", &e.plastic_cap},
+                  {"plastic_shear", &e.plastic_shear},
+                  {"artificial_viscous", &e.artificial_viscous},
+                  {"damping", &e.damping},
+                  {"water_viscous", &e.water_viscous},
+                  {"gravity_work", &e.gravity_work},
+                  {"wall_work", &e.wall_work},
+                  {"body_work", &e.body_work},
+                  {"resting_terrain_work", &e.resting_terrain_work},
+                  {"surface_work_on_particles", &e.surface_work_on_particles},
+                  {"surface_friction", &e.surface_friction},
+                  {"surface_damping", &e.surface_damping},
+                  {"surface_contact_elastic", &e.surface_contact_elastic},
+                  {"initial_surface_contact_elastic", &e.initial_surface_contact_elastic}};
 }
 
 // The moving state of a rigid body (its geometry and load come from the scene).

@@ -88,6 +88,10 @@ void Solver::contact_surface(const ContactSurface* surface, std::uint64_t exchan
   }
   surface_.force[0] = fx, surface_.force[1] = fy, surface_.force[2] = fz;
   surface_.held = true;
+  // What the contact dissipates over the window it is held (its dt) and holds in its springs.
+  energy_.surface_friction += surface_.loads.friction_dissipation_J;
+  energy_.surface_damping += surface_.loads.damping_dissipation_J;
+  energy_.surface_contact_elastic = surface_.loads.elastic_energy_J;
   if (!surface_.loads.drained.empty()) drain(surface_.loads.drained);
   // Where the owner's next surface must reach down to: the particles' reach over the next window.
   const double next_window = m_.settings.coupling_window_s > 0.0 ? m_.settings.coupling_window_s : dt;

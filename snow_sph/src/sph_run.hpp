@@ -82,6 +82,7 @@ class SphRun final : public cosim::coupling::CoupledParticipant {
   // run_outputs.cpp
   void open_series(cosim::RunRecord& record);
   void record_rows(bool force);
+  void plot_energy_split(cosim::RunRecord& record, const std::string& name);
   void write_frame();
 
   // run_summary.cpp
@@ -102,6 +103,7 @@ class SphRun final : public cosim::coupling::CoupledParticipant {
   std::unique_ptr<Model> model_;
   std::unique_ptr<Solver> solver_;
   StepStats step_stats_;  // of the step under way (before_exchange -> after_exchange)
+  std::vector<std::string> energy_columns_;  // energy.csv's
   cosim::CsvWriter *energy_csv_ = nullptr, *bodies_csv_ = nullptr, *front_csv_ = nullptr, *probe_csv_ = nullptr,
                    *contact_csv_ = nullptr;
   std::unique_ptr<cosim::VtkSeries> vtk_;

@@ -35,11 +35,13 @@ void update_stress(Model& m, const ActiveDomain& domain, const PairRates& rates,
     s << p.sxx[i], p.sxy[i], p.sxz[i], p.sxy[i], p.syy[i], p.syz[i], p.sxz[i], p.syz[i], p.szz[i];
     const Eigen::Matrix3d s_old = s;
     double plastic = 0.0;
+    int surface = 0;  // the return's surface (mdpc.hpp); 2: the cap
     if (mat.kind == MaterialModel::Kind::snow) {
       const Eigen::Matrix3d W = 0.5 * (L - L.transpose());
       s += dt * (W * s - s * W);  // objective (Jaumann) rotation
       const MdpcStepResult r = mdpc_update(mat.mdpc, D * dt, s, p.eps_vol_pl[i]);
       plastic = r.plastic_work_density_J_per_m3 * p.mass[i] / rho;
+      surface = r.surface;
       const double K = mat.mdpc.bulk_modulus_Pa(), G = mat.mdpc.shear_modulus_Pa();
       p.sound_speed[i] = std::sqrt((K + 4.0 * G / 3.0) / rho);
     } else {
@@ -52,6 +54,7 @@ void update_stress(Model& m, const ActiveDomain& domain, const PairRates& rates,
     p.pressure[i] = -s.trace() / 3.0;
     p.plastic_work[i] += plastic;
     powers.plastic_increment[i] = plastic;
+    powers.plastic_cap_increment[i] = surface == 2 ? plastic : 0.0;
     // Stress power with the mid-step stress and mid-step volume.
     const double volume = p.mass[i] * 0.5 * (1.0 / rho_old + 1.0 / rho);
     powers.stress[i] = volume * (0.5 * (s_old + s)).cwiseProduct(D).sum();

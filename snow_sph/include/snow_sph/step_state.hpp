@@ -17,24 +17,46 @@
 
 namespace snow_sph {
 
-// Energies of the simulated particles and bodies [J]; see docs/sph.md.
+// Energies of the simulated particles and bodies [J]; see docs/sph.md,
+// "Energy balance". The lumped terms of the balance (total()) and, beside
+// them, their parts: each a power summed per step like the lumped one.
 struct EnergyBalance {
   double kinetic = 0.0;            // particles and rigid bodies
   double internal = 0.0;           // integrated stress power: elastic + plastic (+ water compression)
   double elastic = 0.0;            // current stored elastic energy (from the state)
-  double plastic_dissipation = 0.0;
-  double viscous_dissipation = 0.0;  // artificial and physical viscosity
-  double contact_dissipation = 0.0;  // friction and contact damping
+  double plastic_dissipation = 0.0;  // = plastic_cap + plastic_shear
+  double viscous_dissipation = 0.0;  // = artificial_viscous + damping + water_viscous
+  double contact_dissipation = 0.0;  // the rigid bodies' contact: friction and damping
   double ground_friction_dissipation = 0.0;  // the container walls' Coulomb friction (ground_friction.cpp)
-  double contact_elastic = 0.0;      // stored in penalty springs
-  double external_work = 0.0;        // gravity, applied loads, prescribed motions,
-                                     // the coupled surface, the resting (inactive) terrain
+  double contact_elastic = 0.0;      // stored in the rigid bodies' penalty springs
+  double external_work = 0.0;        // = gravity + walls + bodies + resting terrain + surface on particles
   // Kinetic energy of particles that left the active domain (set at rest there).
   double deactivated_kinetic = 0.0;
   // Kinetic energy of water particles drained from a film they cannot resolve
   // (surface_contact.hpp, SurfaceContactParameters::drain_film_m).
   double drained_kinetic = 0.0;
   double initial_total = 0.0;
+  double initial_kinetic = 0.0;  // kinetic at the start (kinetic - initial_kinetic: what the run left moving)
+
+  // The parts. Plastic work on the cap (mdpc surface 2) and on the shear side
+  // (Drucker-Prager line, transition and tension apex: surfaces 1, 3, 4).
+  double plastic_cap = 0.0, plastic_shear = 0.0;
+  // Monaghan's (1992) artificial viscosity Pi_ij; the quasi-static damping
+  // (Settings::damping_per_s); water's physical viscosity (Morris et al. 1997).
+  double artificial_viscous = 0.0, damping = 0.0, water_viscous = 0.0;
+  // The external work by source: gravity, the walls' repulsion, the rigid
+  // bodies' loads and prescribed motion, the resting (inactive) terrain, and
+  // the coupled surface's force on the particles (at the particles' velocity).
+  double gravity_work = 0.0, wall_work = 0.0, body_work = 0.0, resting_terrain_work = 0.0;
+  double surface_work_on_particles = 0.0;
+  // The particle-facet contact with the coupled surface (surface_contact.hpp):
+  // what its friction and damping dissipated between the surface and the
+  // particles, and what its penalty springs hold now. The surface did this
+  // work on top of surface_work_on_particles (outside total(): it enters the
+  // work done and the dissipation alike).
+  double surface_friction = 0.0, surface_damping = 0.0, surface_contact_elastic = 0.0;
+  double initial_surface_contact_elastic = 0.0;  // at t_0 (a tyre placed in the snow already presses on it)
+
   // Abaqus-style balance: KE + IE + VD + FD + contact - W, relative to the
   // largest of KE, IE, W.
   double total() const {
@@ -42,6 +64,15 @@ struct EnergyBalance {
            drained_kinetic + ground_friction_dissipation - external_work;
   }
   double relative_error() const;
+  // The work done on the terrain by the coupled surface, at the surface: on the
+  // particles plus what the contact dissipated and holds in its springs.
+  double coupled_surface_work() const {
+    return surface_work_on_particles + surface_friction + surface_damping + surface_contact_elastic -
+           initial_surface_contact_elastic;
+  }
+  // All the work done on the terrain: the external work less the surface's
+  // part on the particles, plus its part at the surface.
+  double work_on_terrain() const { return external_work - surface_work_on_particles + coupled_surface_work(); }
 };
 
 // The neighbour list (cell list -> CSR, neighbours.hpp) with the positions it
@@ -76,11 +107,15 @@ struct SymmetricField {
 };
 
 // Per real particle, this step: the powers and increments the energy balance sums.
+// viscous is the sum of artificial_viscous, damping and water_viscous;
+// plastic_cap_increment is plastic_increment where the cap was the active surface, else 0.
 struct StepPowers {
   std::vector<double> stress, viscous, plastic_increment, wall;
   std::vector<double> ground_friction_increment;  // [J] the walls' Coulomb friction (ground_friction.cpp)
+  std::vector<double> artificial_viscous, damping, water_viscous, plastic_cap_increment;
   std::vector<std::vector<double>*> all() {
-    return {&stress, &viscous, &plastic_increment, &wall, &ground_friction_increment};
+    return {&stress,  &viscous,       &plastic_increment,    &wall, &ground_friction_increment, &artificial_viscous,
+            &damping, &water_viscous, &plastic_cap_increment};
   }
 };
 
