@@ -10,6 +10,7 @@
 #include "cosim/result_references.hpp"
 #include "cosim_coupling/cli.hpp"
 #include "dds_terrain_port.hpp"
+#include "tyre_fe/energy_split.hpp"
 #include "tyre_fe/run.hpp"
 #include "tyre_fe/scene.hpp"
 
@@ -32,7 +33,9 @@ int run_tyre(const cosim::coupling::ProgramCli& command_line, bool mesh_only) {
                               mesh_only};
   command_line.restart.apply_to(options);
   if (!coupling.coupled) {
-    cosim::print_results(tyre_fe::run_fe_body_scene(*scene, options));
+    const nlohmann::json summary = tyre_fe::run_fe_body_scene(*scene, options);
+    cosim::print_results(summary);
+    std::printf("%s", tyre_fe::tyre_energy_table(summary.value("energy", nlohmann::json())).c_str());
     return 0;
   }
   cosim::coupling::Session session(coupling.session(cosim::transport::Role::tyre, scene->message));

@@ -4,6 +4,7 @@
 // tyre_results.cpp's.
 #include "tyre_fe/run.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "cosim/error.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/parallel.hpp"
+#include "tyre_fe/energy_split.hpp"
 #include "tyre_fe/scene.hpp"
 #include "tyre_fe/state_checkpoint.hpp"
 #include "tyre_fe/tread_block.hpp"
@@ -127,12 +129,29 @@ void TyreRun::inflate_and_transfer(const CrossSection& section, const TyreSetup&
 
 void TyreRun::open_series(cosim::RunRecord& record) {
   const GroundNames g = ground();
-  csv_ = &record.series("tyre.csv", {"time_s", "stage", "rim_x_m", "rim_z_m", "rim_angle_rad", "rim_vx_m_per_s",
-                                     "rim_vz_m_per_s", "rim_omega_rad_per_s", "rim_vertical_force_N", "rm2_Nm",
-                                     g("force_x_N"), g("force_y_N"), g("force_z_N"),
-                                     "rim_longitudinal_force_N", "contact_area_m2",
-                                     "kinetic_J", "internal_J", "hourglass_J", "external_work_J",
-                                     "energy_balance_error", "crown_radial_growth_m"});
+  tyre_columns_ = {"time_s",
+                   "stage",
+                   "rim_x_m",
+                   "rim_z_m",
+                   "rim_angle_rad",
+                   "rim_vx_m_per_s",
+                   "rim_vz_m_per_s",
+                   "rim_omega_rad_per_s",
+                   "rim_vertical_force_N",
+                   "rm2_Nm",
+                   g("force_x_N"),
+                   g("force_y_N"),
+                   g("force_z_N"),
+                   "rim_longitudinal_force_N",
+                   "contact_area_m2",
+                   "kinetic_J",
+                   "internal_J",
+                   "hourglass_J",
+                   "external_work_J",
+                   "energy_balance_error",
+                   "crown_radial_growth_m"};
+  for (const cosim::EnergyValue& v : energy_split(Energies{})) tyre_columns_.push_back(v.key);  // the split's
+  csv_ = &record.series("tyre.csv", tyre_columns_);
   // A road under the terrain: the road's force and area apart, and the terrain's lift.
   if (road_under_terrain())
     road_csv_ = &record.series("road.csv", {"time_s", "road_force_x_N", "road_force_z_N", "road_contact_area_m2",
@@ -242,11 +261,29 @@ bool TyreRun::after_exchange(bool) {
 
 void TyreRun::output(cosim::RunRecord&) {
   if (s_.time_s >= next_csv_s_ || stage_done_) {
-    csv_->row({s_.time_s, double(stage_), s_.rim.x, s_.rim.z, s_.rim.angle, s_.rim.vx, s_.rim.vz, s_.rim.omega,
-               s_.rim.tyre_force_z_N, s_.rim.rm2_Nm, ground_fx(s_), ground_fy(s_), ground_fz(s_),
-               s_.rim.tyre_force_x_N, ground_area(s_), s_.energy.kinetic_J, s_.energy.internal_J,
-               s_.energy.hourglass_J, s_.energy.external_work_J, s_.energy.balance_error(),
-               mean_radius_of(model_->mesh, s_, centre_) - centre_r0_m_});
+    std::vector<double> row{s_.time_s,
+                            double(stage_),
+                            s_.rim.x,
+                            s_.rim.z,
+                            s_.rim.angle,
+                            s_.rim.vx,
+                            s_.rim.vz,
+                            s_.rim.omega,
+                            s_.rim.tyre_force_z_N,
+                            s_.rim.rm2_Nm,
+                            ground_fx(s_),
+                            ground_fy(s_),
+                            ground_fz(s_),
+                            s_.rim.tyre_force_x_N,
+                            ground_area(s_),
+                            s_.energy.kinetic_J,
+                            s_.energy.internal_J,
+                            s_.energy.hourglass_J,
+                            s_.energy.external_work_J,
+                            s_.energy.balance_error(),
+                            mean_radius_of(model_->mesh, s_, centre_) - centre_r0_m_};
+    for (const cosim::EnergyValue& v : energy_split(s_.energy)) row.push_back(v.value);
+    csv_->row(row);
     if (road_csv_)
       road_csv_->row({s_.time_s, s_.road.force_x_N, s_.road.force_z_N, s_.road.contact_area_m2,
                       s_.terrain.load_totals.force_N[0], s_.terrain.load_totals.force_N[2], s_.rim.vx});
@@ -255,8 +292,21 @@ void TyreRun::output(cosim::RunRecord&) {
   frames_->maybe_write(*model_, s_);
 }
 
+// Where the work done on the tyre went over time: the split's terms stacked,
+// the work done on the tyre as a line over them.
+void TyreRun::plot_energy_split(cosim::RunRecord& record) {
+  auto column = [&](const char* key) {
+    return static_cast<int>(std::find(tyre_columns_.begin(), tyre_columns_.end(), key) - tyre_columns_.begin()) + 1;
+  };
+  const cosim::EnergySplit& split = tyre_energy_split();
+  std::vector<cosim::PlotSeries> stacked;
+  for (const cosim::EnergyTerm& t : split.went_to) stacked.push_back({column(t.key), t.label});
+  record.plot_stacked("tyre.csv", "energy_split.png", 1, stacked, {{column(split.total.key), "work done on the tyre"}},
+                      scene_.name() + ": where the work done on the tyre went", "time [s]", "energy [J]");
+}
+
 void TyreRun::plots(cosim::RunRecord& record) {
-  if (stepping_) write_plots(record.out_dir());
+  if (stepping_) write_plots(record.out_dir()), plot_energy_split(record);
   if (!hydroplaning_curve_) return;
   const double tenth = kHydroplaningRoadShare * loading_.load_N;
   record.plot("road_share_vs_speed.csv", "road_force_vs_speed.png", 2,

@@ -366,6 +366,7 @@ bool integrate(const Model3d& m, State3d& s, const RimDrive& drive) {
   // Mass-proportional damping on the free nodes (dynamic relaxation).
   double damping_power = 0.0;
   for (double p : s.element_viscous_power) damping_power += p;
+  const double bulk_viscous_power = damping_power;
   if (s.damping_per_s > 0.0) {
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (m.is_rim_node[i]) continue;
@@ -417,11 +418,14 @@ bool integrate(const Model3d& m, State3d& s, const RimDrive& drive) {
   for (std::size_t e = 0; e < s.element_energy.size(); ++e)
     internal += s.element_energy[e], hourglass += s.element_hourglass[e];
   Energies& en = s.energy;
-  if (s.step == 0) en.initial_J = internal + kinetic;
+  if (s.step == 0)
+    en.initial_J = internal + kinetic, en.initial_internal_J = internal, en.initial_hourglass_J = hourglass;
   en.kinetic_J = kinetic, en.internal_J = internal, en.hourglass_J = hourglass;
   en.external_work_J += dt * (pressure_power + rim_power);
   en.contact_work_J += dt * contact_power;
   en.damping_work_J += dt * damping_power;
+  en.pressure_work_J += dt * pressure_power;
+  en.bulk_viscous_work_J += dt * bulk_viscous_power;
   s.time_s += dt;
   ++s.step;
   if (s.time_stages) s.stage_times.rest_s += omp_get_wtime() - t3b;

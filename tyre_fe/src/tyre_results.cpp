@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "tyre_fe/energy_split.hpp"
+
 namespace tyre_fe {
 
 void transfer_check_results(const TransferCheckSums& sums, double growth_end_m, const Energies& energy,
@@ -117,11 +119,18 @@ bool report_hydroplaning(const HydroplaningSamples& samples, double load_N, doub
 }
 
 nlohmann::json energy_json(const Energies& e) {
-  return {{"kinetic_J", e.kinetic_J},           {"internal_J", e.internal_J},
-          {"hourglass_J", e.hourglass_J},       {"external_work_J", e.external_work_J},
-          {"damping_work_J", e.damping_work_J}, {"contact_work_J", e.contact_work_J},
-          {"initial_J", e.initial_J},           {"relative_error", e.balance_error()},
-          {"note", "balance = KE + IE - E0 - W_ext - W_damping - W_contact, relative to max(IE, KE, |W_ext|)"}};
+  nlohmann::json j = {
+      {"kinetic_J", e.kinetic_J},
+      {"internal_J", e.internal_J},
+      {"hourglass_J", e.hourglass_J},
+      {"external_work_J", e.external_work_J},
+      {"damping_work_J", e.damping_work_J},
+      {"contact_work_J", e.contact_work_J},
+      {"initial_J", e.initial_J},
+      {"relative_error", e.balance_error()},
+      {"note", "balance = KE + IE - E0 - W_ext - W_damping - W_contact, relative to max(IE, KE, |W_ext|)"}};
+  for (const auto& [key, value] : energy_split(e)) j[key] = value;
+  return j;
 }
 
 }  // namespace tyre_fe

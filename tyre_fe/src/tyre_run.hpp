@@ -59,6 +59,7 @@ class TyreRun final : public cosim::coupling::CoupledParticipant {
   void output(cosim::RunRecord& record) override;
   void finalize(cosim::RunRecord& record) override;
   void plots(cosim::RunRecord& record) override;
+  void plot_energy_split(cosim::RunRecord& record);
   std::string end_status() const override { return at_max_steps_ ? "stopped_at_max_steps" : "completed"; }
   // A mesh-only run has nothing to continue. On a terrain the checkpoints are
   // taken between coupling windows, at the exchanges its peers take theirs
@@ -168,6 +169,7 @@ class TyreRun final : public cosim::coupling::CoupledParticipant {
   std::unique_ptr<Model3d> model_;
   State3d s_;
   std::unique_ptr<FrameWriter> frames_;
+  std::vector<std::string> tyre_columns_;  // tyre.csv's
   cosim::CsvWriter* csv_ = nullptr;
   cosim::CsvWriter* road_csv_ = nullptr;  // a road under the terrain only
   bool stepping_ = false, at_max_steps_ = false;

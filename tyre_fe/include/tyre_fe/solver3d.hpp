@@ -88,8 +88,15 @@ struct Energies {
   double hourglass_J = 0.0;
   double external_work_J = 0.0;  // pressure, wheel load, torque, prescribed motion
   double damping_work_J = 0.0;   // work of mass damping and bulk viscosity (<= 0)
-  double contact_work_J = 0.0;   // work of the road forces (penalty + friction)
+  double contact_work_J = 0.0;   // work of the road's and the terrain's forces (penalty + friction)
   double initial_J = 0.0;        // E_kin + E_int at the first step (the inflated state)
+  // Parts of the above: the inflation pressure's share of external_work_J (the
+  // rest is the rim's: wheel load, drive torque, prescribed motion), and the
+  // bulk viscosity's share of damping_work_J (the rest is mass damping,
+  // including kinetic energy removed by zero_velocities).
+  double pressure_work_J = 0.0;
+  double bulk_viscous_work_J = 0.0;                            // <= 0
+  double initial_internal_J = 0.0, initial_hourglass_J = 0.0;  // at the first step
   // |E_kin + E_int - E_0 - W_ext - W_damp - W_contact| / max(E_int, E_kin, |W_ext|)
   // KE + IE - E0 - W_ext - W_damping - W_contact [J]: > 0 energy created by the
   // integration (spurious growth), < 0 energy lost without being booked.
