@@ -12,9 +12,10 @@
 
 #include "cosim/checkpoint.hpp"
 #include "cosim/error.hpp"
-#include "cosim/result_references.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/process.hpp"
+#include "cosim/result_references.hpp"
+#include "run_energy.hpp"
 #include "study.hpp"
 
 namespace cosim {
@@ -334,6 +335,8 @@ int write_run_summary(const RunRequest& request, const LoadedScene& scene, const
   summary["status"] = table.all_completed ? "completed" : "failed";
   if (scene.message.references_size() > 0)
     summary["comparison"] = compare_with_references(scene.message.references(), results_json);
+  const nlohmann::json energy = coupled_run_energy(launch.out, own.coupler, own.terrain, own.tyre);
+  if (!energy.is_null()) summary["energy"] = energy;
   write_json(launch.out + "/summary.json", summary);
   if (table.code == 0) {
     print_run_report({results_json, performance, summary, own.tyre, own.terrain, launch.out + "/summary.json"});

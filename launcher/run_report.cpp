@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "cosim/result_references.hpp"
+#include "run_energy.hpp"
 
 namespace cosim {
 namespace {
@@ -72,8 +73,15 @@ void print_energy(const char* title, const nlohmann::json& own, const char* refe
 
 void print_run_report(const RunReportInputs& in) {
   print_forces(in.results);
-  print_energy("Where the work on the terrain went", in.terrain, "external_work_J");
-  print_energy("The tyre's energy", in.tyre, "external_work_J");
+  // The split tables and the motion resistance's work beside the plastic work
+  // (run_energy.hpp) when the run has them, else every term.
+  const std::string split = coupled_run_energy_text(in.summary.value("energy", nlohmann::json()));
+  if (!split.empty()) {
+    std::printf("%s", split.c_str());
+  } else {
+    print_energy("Where the work on the terrain went", in.terrain, "external_work_J");
+    print_energy("The tyre's energy", in.tyre, "external_work_J");
+  }
   std::printf("%s", reference_lines(in.summary.value("comparison", nlohmann::json())).c_str());
   const nlohmann::json& p = in.performance;
   if (p.contains("coupling_window_s"))

@@ -6,19 +6,20 @@
 #include <optional>
 #include <utility>
 
-#include "coupler/coupling_scheme.hpp"
-#include "coupler/exchange_forces.hpp"
-#include "coupler/exchange_payload.hpp"
-#include "coupler/force_outputs.hpp"
-#include "coupler/force_window.hpp"
-#include "coupler/scene_checks.hpp"
-#include "coupler/scene_settings.hpp"
-#include "coupler/wire.hpp"
 #include "cosim/outputs.hpp"
 #include "cosim/participant.hpp"
 #include "cosim/surface_exchange.hpp"
 #include "cosim_coupling/exchange_topics.hpp"
 #include "cosim_coupling/session_link.hpp"
+#include "coupler/coupling_scheme.hpp"
+#include "coupler/exchange_forces.hpp"
+#include "coupler/exchange_payload.hpp"
+#include "coupler/force_outputs.hpp"
+#include "coupler/force_window.hpp"
+#include "coupler/resistance_work.hpp"
+#include "coupler/scene_checks.hpp"
+#include "coupler/scene_settings.hpp"
+#include "coupler/wire.hpp"
 
 namespace coupler {
 namespace {
@@ -97,6 +98,7 @@ class CouplerRun final : public cosim::coupling::CoupledParticipant {
   tp::ContactLoads loads_;
   CouplingWindow window_;
   ForceWindow means_;  // the rows of the last averaging window
+  ResistanceWork resistance_work_;  // integral F1 dx over the run
   ResidualWatch residuals_;
   FacetLoads last_facets_;
   DecompositionOptions decomposition_;
@@ -219,6 +221,7 @@ bool CouplerRun::after_exchange(bool peers_go_on) {
   residuals_.add(f);  // every step: the facets' pressure and friction parts add up to the force on the tyre
   csv_->row(forces_csv_row(sim_time_, step_, f, wheel_));
   means_.add({sim_time_, f.d, wheel_.rim_longitudinal_force_N, f.total_x_N});
+  resistance_work_.add(sim_time_, wheel_.rim_x_m, f.d.motion_resistance_N);
   last_facets_ = std::move(f.facet_loads);
   ++step_;
   if (step_ % kPaceEvery == 0) pace_csv_->row({sim_time_, double(step_), record_->wall_s()});
@@ -229,6 +232,7 @@ bool CouplerRun::after_exchange(bool peers_go_on) {
 // window one array per column, the surface's node positions, the run's counters.
 void CouplerRun::save(cosim::CheckpointWriter& out) const {
   means_.save(out, "coupler.window.");
+  resistance_work_.save(out, "coupler.");
   surface_.save(out, "coupler.");
   out.put_value("coupler.time_s", sim_time_);
   out.put_value("coupler.decomposition_residual_max_N", residuals_.largest_residual_N);
@@ -240,6 +244,7 @@ void CouplerRun::save(cosim::CheckpointWriter& out) const {
 
 void CouplerRun::restore(const cosim::CheckpointReader& in) {
   means_.restore(in, "coupler.window.");
+  resistance_work_.restore(in, "coupler.");
   surface_.restore(in, "coupler.");
   sim_time_ = in.get_value<double>("coupler.time_s");
   residuals_.largest_residual_N = in.get_value<double>("coupler.decomposition_residual_max_N");
@@ -260,6 +265,7 @@ void CouplerRun::finalize(cosim::RunRecord& record) {
   summary["rejected_samples"] = {{"other_run", session_.rejected_run_id()}, {"wrong_step", session_.rejected_step()}};
   if (!joined()) return;
   put_window_results(means_, results);
+  resistance_work_.put_results(results);
   residuals_.put_results(results);
   const double wall = record.wall_s();
   const double steps = static_cast<double>(step_);
