@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "plate_surface.hpp"
 #include "snow_sph/energy_split.hpp"
 #include "snow_sph/scene.hpp"
 #include "snow_sph/solver.hpp"
@@ -19,17 +20,7 @@ namespace {
 
 const std::string kScene = test_support::source_dir() + "/tests/snow_sph/test_sph_substeps.textproto";
 
-snow_sph::ContactSurface plate(double z, double vz) {
-  snow_sph::ContactSurface s;
-  const double xs[4] = {0.3, 0.3, 0.7, 0.7}, ys[4] = {0.3, 0.7, 0.7, 0.3};
-  for (int a = 0; a < 4; ++a) {
-    s.x.push_back(xs[a]), s.y.push_back(ys[a]), s.z.push_back(z);
-    s.vx.push_back(0.0), s.vy.push_back(0.0), s.vz.push_back(vz);
-  }
-  s.facet_nodes = {0, 1, 2, 3};  // (x2 - x0) x (x3 - x1) along -z: facing the snow below
-  s.friction_coefficient = {0.3};
-  return s;
-}
+using snow_sph_test::plate;
 
 // The cube on the floor under gravity, the plate driven 30 mm into it at 3 m/s and held, 30 ms.
 snow_sph::EnergyBalance strike(const std::vector<std::string>& sets) {
@@ -39,11 +30,7 @@ snow_sph::EnergyBalance strike(const std::vector<std::string>& sets) {
   const auto loaded = snow_sph::load_sph_scene(kScene, all);
   snow_sph::Model model = snow_sph::build_model(loaded->message);
   snow_sph::Solver solver(model);
-  snow_sph::SurfaceContactParameters contact;
-  contact.particle_radius_m = 0.5 * model.settings.spacing;
-  contact.stiffness_N_per_m = model.settings.contact_stiffness;
-  solver.couple(contact);
-  solver.prepare();
+  const snow_sph::SurfaceContactParameters contact = snow_sph_test::couple_to_surface(solver, model);
   const double window = 0.5 * solver.stability_limit_dt();
   model.settings.coupling_window_s = window;
   const double top = 0.1 + contact.particle_radius_m, stop = top - 0.03, speed = 3.0;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cosim/scene_io.hpp"
+#include "plate_surface.hpp"
 #include "snow_sph/scene.hpp"
 #include "snow_sph/solver.hpp"
 #include "test_support.hpp"
@@ -18,19 +19,7 @@ namespace {
 
 const std::string kScene = test_support::source_dir() + "/tests/snow_sph/test_sph_substeps.textproto";
 
-// A 0.4 m square plate, its underside facing the snow (outward normal -z), at
-// height z, moving at vz.
-snow_sph::ContactSurface plate(double z, double vz) {
-  snow_sph::ContactSurface s;
-  const double xs[4] = {0.3, 0.3, 0.7, 0.7}, ys[4] = {0.3, 0.7, 0.7, 0.3};
-  for (int a = 0; a < 4; ++a) {
-    s.x.push_back(xs[a]), s.y.push_back(ys[a]), s.z.push_back(z);
-    s.vx.push_back(0.0), s.vy.push_back(0.0), s.vz.push_back(vz);
-  }
-  s.facet_nodes = {0, 1, 2, 3};  // (x2 - x0) x (x3 - x1) along -z
-  s.friction_coefficient = {0.3};
-  return s;
-}
+using snow_sph_test::plate;
 
 struct Outcome {
   std::uint64_t windows = 0, substepped = 0;
@@ -50,11 +39,7 @@ Outcome strike(const std::vector<std::string>& sets, double top_z, double speed,
   const auto loaded = snow_sph::load_sph_scene(kScene, sets);
   snow_sph::Model model = snow_sph::build_model(loaded->message);
   snow_sph::Solver solver(model);
-  snow_sph::SurfaceContactParameters contact;
-  contact.particle_radius_m = 0.5 * model.settings.spacing;
-  contact.stiffness_N_per_m = model.settings.contact_stiffness;
-  solver.couple(contact);
-  solver.prepare();
+  const snow_sph::SurfaceContactParameters contact = snow_sph_test::couple_to_surface(solver, model);
   const double window = courant * solver.stability_limit_dt();
   model.settings.coupling_window_s = window;
   const double z0 = top_z + contact.particle_radius_m + 1e-3;  // 1 mm clear of the top particles
