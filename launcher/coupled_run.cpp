@@ -339,7 +339,7 @@ int write_run_summary(const RunRequest& request, const LoadedScene& scene, const
   if (!energy.is_null()) summary["energy"] = energy;
   write_json(launch.out + "/summary.json", summary);
   if (table.code == 0) {
-    print_run_report({results_json, performance, summary, own.tyre, own.terrain, launch.out + "/summary.json"});
+    print_run_report({results_json, performance, summary, launch.out + "/summary.json"});
   }
   return table.code;
 }

@@ -1,7 +1,6 @@
 // The end-of-run report of a coupled run; see run_report.hpp.
 #include "run_report.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <utility>
 
@@ -50,38 +49,12 @@ void print_forces(const nlohmann::json& r) {
                               : "the window is NOT steady for the forces marked: their means are not a steady state");
 }
 
-// One solver's energy terms (every "*_J" of its summary's `energy`), each with
-// its share of `reference_key`'s work, and the balance's relative error.
-void print_energy(const char* title, const nlohmann::json& own, const char* reference_key) {
-  if (!own.is_object() || !own.contains("energy")) return;
-  const nlohmann::json& e = own["energy"];
-  const double reference = e.contains(reference_key) ? std::fabs(e[reference_key].get<double>()) : 0.0;
-  std::printf("\n%s (J; share of %s):\n", title, reference_key);
-  for (const auto& [key, value] : e.items()) {
-    if (!value.is_number() || key.size() < 2 || key.compare(key.size() - 2, 2, "_J") != 0) continue;
-    const double joules = value.get<double>();
-    if (reference > 0.0)
-      std::printf("  %-40s %10.1f  %5.1f %%\n", key.c_str(), joules, 100.0 * joules / reference);
-    else
-      std::printf("  %-40s %10.1f\n", key.c_str(), joules);
-  }
-  if (e.contains("relative_error"))
-    std::printf("  %-40s %10.2f %%\n", "balance error", 100.0 * e["relative_error"].get<double>());
-}
-
 }  // namespace
 
 void print_run_report(const RunReportInputs& in) {
   print_forces(in.results);
-  // The split tables and the motion resistance's work beside the plastic work
-  // (run_energy.hpp) when the run has them, else every term.
-  const std::string split = coupled_run_energy_text(in.summary.value("energy", nlohmann::json()));
-  if (!split.empty()) {
-    std::printf("%s", split.c_str());
-  } else {
-    print_energy("Where the work on the terrain went", in.terrain, "external_work_J");
-    print_energy("The tyre's energy", in.tyre, "external_work_J");
-  }
+  // The split tables and the motion resistance's work beside the plastic work (run_energy.hpp).
+  std::printf("%s", coupled_run_energy_text(in.summary.value("energy", nlohmann::json())).c_str());
   std::printf("%s", reference_lines(in.summary.value("comparison", nlohmann::json())).c_str());
   const nlohmann::json& p = in.performance;
   if (p.contains("coupling_window_s"))

@@ -13,9 +13,7 @@ namespace cosim {
 struct RunReportInputs {
   const nlohmann::json& results;      // the run's merged results
   const nlohmann::json& performance;  // the run's merged performance
-  const nlohmann::json& summary;      // the run's summary.json (wall time, comparison)
-  const nlohmann::json& tyre;         // the tyre's own summary (null if none)
-  const nlohmann::json& terrain;      // the terrain's own summary (null if none)
+  const nlohmann::json& summary;      // the run's summary.json (wall time, comparison, energy)
   std::string summary_path;
 };
 
